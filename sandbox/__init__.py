@@ -1,0 +1,1 @@
+"""A 2D physics sandbox for teaching physics-based animation."""
