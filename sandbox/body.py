@@ -1,0 +1,245 @@
+"""Rigid bodies (slides, "State Initialisation (Take 2)"): mass, moment, position, orientation,
+linear and angular velocity.
+
+A :class:`Body` added to a :class:`~sandbox.world.World` is a view into the world's arrays (row
+``index``): reading ``body.position`` reads the world's state. Before it is added, the body keeps
+its own initial values.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+DYNAMIC, STATIC, KINEMATIC = 0, 1, 2
+TYPES = {"dynamic": DYNAMIC, "static": STATIC, "kinematic": KINEMATIC}
+TYPE_NAMES = {v: k for k, v in TYPES.items()}
+
+
+def _rot(c: float, s: float, v) -> np.ndarray:
+    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+class Body:
+    """A rigid body. Position and angle place its origin; shapes are in that frame.
+
+    ``mass`` (kg) and ``moment`` (kg m^2, about the centre of mass) default to what the shapes
+    give; pass them to override. ``velocity`` is the velocity of the centre of mass (m/s).
+    """
+
+    def __init__(
+        self,
+        name: str = "",
+        type: str = "dynamic",
+        position=(0.0, 0.0),
+        angle: float = 0.0,
+        velocity=(0.0, 0.0),
+        angular_velocity: float = 0.0,
+        mass: float | None = None,
+        moment: float | None = None,
+        ccd: bool = False,
+        force=(0.0, 0.0),
+        torque: float = 0.0,
+    ) -> None:
+        if type not in TYPES:
+            raise ValueError(f"type: expected one of {sorted(TYPES)}, got {type!r}")
+        self.name = name
+        self.type = type
+        self.shapes: list = []
+        self.mass_override = mass
+        self.moment_override = moment
+        self.constant_force = np.array(force, dtype=float)
+        self.constant_torque = float(torque)
+        self.controller = None
+        self.world = None
+        self.index = -1
+        self._init = {
+            "position": np.array(position, dtype=float),
+            "angle": float(angle),
+            "velocity": np.array(velocity, dtype=float),
+            "angular_velocity": float(angular_velocity),
+            "ccd": bool(ccd),
+        }
+
+    # --- building -----------------------------------------------------------------------------
+    def add_shape(self, shape):
+        """Attach a shape (returned); mass properties are recomputed."""
+        shape.body = self
+        self.shapes.append(shape)
+        if self.world is not None:
+            self.world._shapes_changed(self)
+        return shape
+
+    def mass_properties(self):
+        """Mass (kg), centre of mass (body frame, m) and moment about it (kg m^2)."""
+        from sandbox.mass import MassProperties, combine
+
+        if self.shapes:
+            props = combine([s.mass_properties() for s in self.shapes])
+        else:
+            props = MassProperties(0.0, np.zeros(2), 0.0, 0.0)
+        mass = props.mass if self.mass_override is None else float(self.mass_override)
+        moment = props.moment
+        if self.mass_override is not None and props.mass > 0:
+            moment = props.moment * mass / props.mass  # same distribution, scaled
+        if self.moment_override is not None:
+            moment = float(self.moment_override)
+        return mass, np.asarray(props.centroid, dtype=float), moment
+
+    # --- state (views into the world arrays) -------------------------------------------------
+    def _w(self):
+        if self.world is None:
+            raise RuntimeError(f"body {self.name!r} is not in a world yet")
+        return self.world
+
+    @property
+    def kind(self) -> int:
+        return TYPES[self.type]
+
+    @property
+    def position(self) -> tuple[float, float]:
+        """World position of the body origin (m)."""
+        if self.world is None:
+            return tuple(self._init["position"])
+        w, i = self.world, self.index
+        c, s = w.cs[i]
+        lc = w.local_com[i]
+        return (
+            float(w.com[i, 0] - (c * lc[0] - s * lc[1])),
+            float(w.com[i, 1] - (s * lc[0] + c * lc[1])),
+        )
+
+    @position.setter
+    def position(self, value) -> None:
+        if self.world is None:
+            self._init["position"] = np.array(value, dtype=float)
+            return
+        w, i = self.world, self.index
+        w.com[i] = np.asarray(value, dtype=float) + _rot(*w.cs[i], w.local_com[i])
+        w._state_changed()
+
+    @property
+    def center_of_mass(self) -> tuple[float, float]:
+        """World position of the centre of mass (m)."""
+        w = self._w()
+        return (float(w.com[self.index, 0]), float(w.com[self.index, 1]))
+
+    @property
+    def angle(self) -> float:
+        """Orientation in radians, in [-pi, pi]."""
+        if self.world is None:
+            return self._init["angle"]
+        return float(self.world.angles()[self.index])
+
+    @angle.setter
+    def angle(self, value: float) -> None:
+        if self.world is None:
+            self._init["angle"] = float(value)
+            return
+        origin = self.position
+        self.world._set_angle(self.index, float(value))
+        self.position = origin
+
+    @property
+    def velocity(self) -> tuple[float, float]:
+        """Velocity of the centre of mass (m/s)."""
+        if self.world is None:
+            return tuple(self._init["velocity"])
+        v = self.world.vel[self.index]
+        return (float(v[0]), float(v[1]))
+
+    @velocity.setter
+    def velocity(self, value) -> None:
+        if self.world is None:
+            self._init["velocity"] = np.array(value, dtype=float)
+        else:
+            self.world.vel[self.index] = np.asarray(value, dtype=float)
+            self.world._state_changed()
+
+    @property
+    def angular_velocity(self) -> float:
+        """rad/s, counter-clockwise positive."""
+        if self.world is None:
+            return self._init["angular_velocity"]
+        return float(self.world.omega[self.index])
+
+    @angular_velocity.setter
+    def angular_velocity(self, value: float) -> None:
+        if self.world is None:
+            self._init["angular_velocity"] = float(value)
+        else:
+            self.world.omega[self.index] = float(value)
+            self.world._state_changed()
+
+    @property
+    def mass(self) -> float:
+        """kg (inf for static and kinematic bodies in a world)."""
+        if self.world is None:
+            return self.mass_properties()[0]
+        return float(self.world.mass[self.index])
+
+    @property
+    def moment(self) -> float:
+        """Moment of inertia about the centre of mass (kg m^2)."""
+        if self.world is None:
+            return self.mass_properties()[2]
+        return float(self.world.moment[self.index])
+
+    @property
+    def ccd(self) -> bool:
+        return self._init["ccd"] if self.world is None else bool(self.world.ccd[self.index])
+
+    # --- frames -------------------------------------------------------------------------------
+    def world_point(self, local) -> np.ndarray:
+        """Body-frame point (about the origin) to world coordinates (m)."""
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        return np.asarray(self.position) + _rot(c, s, local)
+
+    def local_point(self, point) -> np.ndarray:
+        """World point to the body frame (about the origin)."""
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        d = np.asarray(point, dtype=float) - np.asarray(self.position)
+        return _rot(c, -s, d)
+
+    def velocity_at(self, point) -> np.ndarray:
+        """Velocity of the material point at world ``point``: v + omega x r (m/s)."""
+        w = self._w()
+        r = np.asarray(point, dtype=float) - w.com[self.index]
+        om = w.omega[self.index]
+        return w.vel[self.index] + om * np.array([-r[1], r[0]])
+
+    # --- forces -------------------------------------------------------------------------------
+    def apply_force(self, force, point=None) -> None:
+        """Add a force (N) at a world point (default: the centre of mass); tau = r x f."""
+        w = self._w()
+        f = np.asarray(force, dtype=float)
+        w.force[self.index] += f
+        if point is not None:
+            r = np.asarray(point, dtype=float) - w.com[self.index]
+            w.torque[self.index] += r[0] * f[1] - r[1] * f[0]  # slides, "Torque": tau = r x f
+
+    def apply_torque(self, torque: float) -> None:
+        """Add a torque (N m) for this step."""
+        self._w().torque[self.index] += float(torque)
+
+    def apply_impulse(self, impulse, point=None) -> None:
+        """Change momentum at once: v += j / m, omega += (r x j) / I."""
+        w, i = self._w(), self.index
+        j = np.asarray(impulse, dtype=float)
+        w.vel[i] += j * w.inv_mass[i]
+        if point is not None:
+            r = np.asarray(point, dtype=float) - w.com[i]
+            w.omega[i] += (r[0] * j[1] - r[1] * j[0]) * w.inv_moment[i]
+        w._state_changed()
+
+    def kinetic_energy(self) -> float:
+        """m |v|^2 / 2 + I omega^2 / 2 (J); 0 for static and kinematic bodies."""
+        w, i = self._w(), self.index
+        if self.type != "dynamic":
+            return 0.0
+        v = w.vel[i]
+        return 0.5 * w.mass[i] * float(v @ v) + 0.5 * w.moment[i] * w.omega[i] ** 2
+
+    def __repr__(self) -> str:
+        return f"Body({self.name!r}, {self.type}, position={self.position}, angle={self.angle:.4f})"

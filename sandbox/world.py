@@ -1,0 +1,340 @@
+"""The world: every body's state in contiguous arrays, and the step (slides, "State Update").
+
+Per step (``docs/architecture.md`` has the details):
+
+1. forces: gravity, constant forces, controllers, force generators -> accelerations
+2. the integrator's free-motion increments (dp, dv, dphi, domega)
+3. v += dv; contacts found at the current positions (retroactive detection)
+4. the solver's impulses change v and omega (contacts and joints)
+5. p += dp + (impulse velocity change) dt; orientation turned likewise
+6. continuous collision for ``ccd`` bodies, then the penetration fix
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from sandbox import integrators, orientation
+from sandbox.body import DYNAMIC, KINEMATIC, STATIC, TYPES, Body
+from sandbox.geometry_arrays import Geometry, build_geometry
+from sandbox.settings import Settings
+
+
+class World:
+    """A 2D rigid-body world. SI units, y up, radians counter-clockwise.
+
+    ``World(gravity=(0, -9.81), dt=1/60, orientation="complex", solver="iterative", ...)``: any
+    field of :class:`~sandbox.settings.Settings` may be passed by name.
+    """
+
+    def __init__(
+        self, gravity=(0.0, -9.81), dt: float = 1.0 / 60.0, name: str = "world", **settings
+    ):
+        if not dt > 0:
+            raise ValueError("dt: must be > 0")
+        self.name = name
+        self.gravity = np.array(gravity, dtype=float)
+        self.dt = float(dt)
+        self.settings = Settings(**settings)
+        self.time = 0.0
+        self.steps = 0
+        self.bodies: list[Body] = []
+        self.joints: list = []
+        self.forces: list = []
+        self.stats: dict = {}
+        self.manifolds = None  # contacts of the last step (sandbox.contact.Manifolds)
+        self._by_name: dict[str, Body] = {}
+        self._geometry: Geometry | None = None
+        self._analytic_ref = None
+        self._solver_cache: dict = {}
+        self._alloc(0)
+
+    # --- arrays -------------------------------------------------------------------------------
+    def _alloc(self, n: int) -> None:
+        self.kind = np.zeros(n, dtype=np.int64)
+        self.com = np.zeros((n, 2))
+        self.local_com = np.zeros((n, 2))
+        self.vel = np.zeros((n, 2))
+        self.omega = np.zeros(n)
+        self.rot = np.zeros((n, 4))
+        self.cs = np.zeros((n, 2))
+        self.mass = np.zeros(n)
+        self.inv_mass = np.zeros(n)
+        self.moment = np.zeros(n)
+        self.inv_moment = np.zeros(n)
+        self.force = np.zeros((n, 2))
+        self.torque = np.zeros(n)
+        self.ccd = np.zeros(n, dtype=bool)
+
+    def _grow(self) -> int:
+        n = len(self.kind)
+        for key, value in list(vars(self).items()):
+            if (
+                isinstance(value, np.ndarray)
+                and value.shape[:1] == (n,)
+                and key not in ("gravity",)
+            ):
+                pad = np.zeros((1, *value.shape[1:]), dtype=value.dtype)
+                setattr(self, key, np.concatenate([value, pad]))
+        return n
+
+    @property
+    def orientation_kind(self) -> int:
+        return orientation.NAMES[self.settings.orientation]
+
+    # --- building -----------------------------------------------------------------------------
+    def add_body(self, body: Body) -> Body:
+        """Add a body (returned). Names must be unique; an empty name becomes ``body<i>``."""
+        if body.world is not None:
+            raise ValueError(f"body {body.name!r} is already in a world")
+        if not body.name:
+            body.name = f"body{len(self.bodies)}"
+        if body.name in self._by_name:
+            raise ValueError(f"duplicate body name {body.name!r}")
+        i = self._grow()
+        body.world, body.index = self, i
+        self.bodies.append(body)
+        self._by_name[body.name] = body
+        init = body._init
+        self.kind[i] = TYPES[body.type]
+        self.vel[i] = init["velocity"]
+        self.omega[i] = init["angular_velocity"]
+        self.ccd[i] = init["ccd"]
+        self._set_angle(i, init["angle"])
+        self._update_mass(body, origin=init["position"])
+        return body
+
+    def add_joint(self, joint):
+        """Add a joint (see :mod:`sandbox.joints`); returned."""
+        joint.attach(self)
+        self.joints.append(joint)
+        return joint
+
+    def add_force(self, generator):
+        """Add a force generator (see :mod:`sandbox.forces`); returned."""
+        if hasattr(generator, "attach"):
+            generator.attach(self)
+        self.forces.append(generator)
+        return generator
+
+    def body(self, name: str) -> Body:
+        """The body called ``name`` (KeyError if none)."""
+        try:
+            return self._by_name[name]
+        except KeyError:
+            raise KeyError(f"no body named {name!r}") from None
+
+    def _update_mass(self, body: Body, origin=None) -> None:
+        i = body.index
+        if origin is None:
+            origin = np.asarray(body.position)
+        mass, local_com, moment = body.mass_properties()
+        self.local_com[i] = local_com
+        c, s = self.cs[i]
+        self.com[i] = np.asarray(origin) + [
+            c * local_com[0] - s * local_com[1],
+            s * local_com[0] + c * local_com[1],
+        ]
+        if body.type == "dynamic":
+            if not (mass > 0 and moment > 0):  # no shapes yet: checked again when stepping
+                self.mass[i] = self.moment[i] = self.inv_mass[i] = self.inv_moment[i] = 0.0
+                self._geometry = None
+                return
+            self.mass[i], self.moment[i] = mass, moment
+            self.inv_mass[i], self.inv_moment[i] = 1.0 / mass, 1.0 / moment
+        else:
+            self.mass[i] = self.moment[i] = np.inf
+            self.inv_mass[i] = self.inv_moment[i] = 0.0
+        self._geometry = None
+        self._state_changed()
+
+    def _shapes_changed(self, body: Body) -> None:
+        self._update_mass(body)
+
+    def _set_angle(self, i: int, angle: float) -> None:
+        row = self.rot[i : i + 1]
+        orientation.set_angles(self.orientation_kind, row, np.array([angle]))
+        orientation.cos_sin(self.orientation_kind, row, self.cs[i : i + 1])
+        self._state_changed()
+
+    def _state_changed(self) -> None:
+        self._analytic_ref = None
+
+    def angles(self) -> np.ndarray:
+        """Every body's angle (rad, in [-pi, pi])."""
+        return orientation.angles_of(self.orientation_kind, self.rot)
+
+    def origins(self) -> np.ndarray:
+        """Every body's origin (n, 2): com - R local_com."""
+        c, s = self.cs[:, 0], self.cs[:, 1]
+        lc = self.local_com
+        return self.com - np.stack(
+            [c * lc[:, 0] - s * lc[:, 1], s * lc[:, 0] + c * lc[:, 1]], axis=1
+        )
+
+    def geometry(self) -> Geometry:
+        """Flattened shape arrays (rebuilt after shapes change)."""
+        if self._geometry is None:
+            self._geometry = build_geometry(self.bodies, self.local_com)
+        return self._geometry
+
+    # --- forces -------------------------------------------------------------------------------
+    def _accelerations(self, extra_force: np.ndarray, extra_torque: np.ndarray):
+        """accel(p, v, phi, omega) for the integrators: gravity + forces / m, torques / I."""
+        dyn = self.kind == DYNAMIC
+        inv_m, inv_i = self.inv_mass, self.inv_moment
+        gravity = np.where(dyn[:, None], self.gravity, 0.0)
+        generators = self.forces
+
+        def accel(p, v, phi, w):
+            f = extra_force.copy()
+            tau = extra_torque.copy()
+            for g in generators:
+                g.accumulate(self, p, v, phi, w, f, tau)
+            return gravity + f * inv_m[:, None], tau * inv_i
+
+        return accel
+
+    # --- the step -----------------------------------------------------------------------------
+    def step(self, dt: float | None = None) -> None:
+        """Advance the world by ``dt`` seconds (default: the world's dt)."""
+        dt = self.dt if dt is None else float(dt)
+        if not dt > 0:
+            raise ValueError("dt: must be > 0")
+        massless = (self.kind == DYNAMIC) & (self.mass <= 0)
+        if massless.any():
+            name = self.bodies[int(np.argmax(massless))].name
+            raise ValueError(f"body {name!r}: a dynamic body needs shapes or a mass and moment")
+        for body in self.bodies:
+            if body.controller is not None:
+                body.controller(body, self)
+            if body.constant_torque or body.constant_force.any():
+                self.force[body.index] += body.constant_force
+                self.torque[body.index] += body.constant_torque
+        if self.settings.integrator == "analytic":
+            self._step_analytic(dt)
+        else:
+            self._step_numeric(dt)
+        self.force[:] = 0.0
+        self.torque[:] = 0.0
+        self.time += dt
+        self.steps += 1
+
+    def _step_numeric(self, dt: float) -> None:
+        from sandbox import collision
+
+        s = self.settings
+        moving = self.kind != STATIC
+        dyn = self.kind == DYNAMIC
+        phi = self.angles()
+        accel = self._accelerations(self.force, self.torque)
+        dp, dv, dphi, dw = integrators.INTEGRATORS[s.integrator](
+            self.com, self.vel, phi, self.omega, accel, dt
+        )
+        kin = self.kind == KINEMATIC  # kinematic bodies move at their own velocity
+        dp = np.where(kin[:, None], self.vel * dt, dp)
+        dphi = np.where(kin, self.omega * dt, dphi)
+        self.vel += np.where(dyn[:, None], dv, 0.0)
+        self.omega += np.where(dyn, dw, 0.0)
+        v_free, w_free = self.vel.copy(), self.omega.copy()
+
+        self.manifolds = collision.solve_velocities(self, dt)
+
+        dp = dp + (self.vel - v_free) * dt
+        dphi = dphi + (self.omega - w_free) * dt
+        dp[~moving] = 0.0
+        dphi[~moving] = 0.0
+        if self.ccd.any():
+            collision.limit_ccd_motion(self, dp, dphi)
+        self.com += dp
+        orientation.integrate_rotations(self.orientation_kind, self.rot, dphi, s.renormalise)
+        orientation.cos_sin(self.orientation_kind, self.rot, self.cs)
+        collision.solve_positions(self, self.manifolds, dt)
+
+    def _step_analytic(self, dt: float) -> None:
+        """p(t) = s + u t + a t^2 / 2, theta(t) = theta0 + omega0 t + alpha t^2 / 2 (slides)."""
+        if self.joints or self.forces:
+            raise ValueError("settings.integrator: analytic motion cannot have joints or forces")
+        if self._analytic_ref is None:
+            dyn = (self.kind == DYNAMIC)[:, None]
+            a = np.where(dyn, self.gravity + self.force * self.inv_mass[:, None], 0.0)
+            alpha = self.torque * self.inv_moment
+            self._analytic_ref = (
+                self.time,
+                self.com.copy(),
+                self.vel.copy(),
+                a,
+                self.angles(),
+                self.omega.copy(),
+                alpha,
+            )
+        t0, s0, u, a, th0, w0, alpha = self._analytic_ref
+        t = self.time + dt - t0
+        moving = self.kind != STATIC
+        self.com[moving] = (s0 + u * t + 0.5 * a * t * t)[moving]
+        self.vel[moving] = (u + a * t)[moving]
+        self.omega[moving] = (w0 + alpha * t)[moving]
+        theta = th0 + w0 * t + 0.5 * alpha * t * t
+        orientation.set_angles(self.orientation_kind, self.rot, np.where(moving, theta, th0))
+        orientation.cos_sin(self.orientation_kind, self.rot, self.cs)
+        ref = self._analytic_ref
+        self.manifolds = None
+        self._analytic_ref = ref  # keep the closed-form reference across steps
+
+    # --- observation --------------------------------------------------------------------------
+    def find_contacts(self) -> list:
+        """Broadphase + narrowphase at the current state, without stepping (list of Contact)."""
+        from sandbox import collision
+        from sandbox.contact import contacts_from_manifolds
+
+        manifolds = collision.detect(self, margin=0.0)
+        return contacts_from_manifolds(manifolds, self.bodies)
+
+    def kinetic_energy(self) -> float:
+        """Sum of m |v|^2 / 2 + I omega^2 / 2 over dynamic bodies (J)."""
+        dyn = self.kind == DYNAMIC
+        v2 = np.sum(self.vel[dyn] ** 2, axis=1)
+        return float(
+            np.sum(0.5 * self.mass[dyn] * v2 + 0.5 * self.moment[dyn] * self.omega[dyn] ** 2)
+        )
+
+    def potential_energy(self) -> float:
+        """Gravitational -m g . c over dynamic bodies, plus springs' k x^2 / 2 (J)."""
+        dyn = self.kind == DYNAMIC
+        pe = -float(np.sum(self.mass[dyn] * (self.com[dyn] @ self.gravity)))
+        for item in (*self.joints, *self.forces):
+            if hasattr(item, "potential_energy"):
+                pe += item.potential_energy(self)
+        return pe
+
+    def energy(self) -> float:
+        """Kinetic + potential (J)."""
+        return self.kinetic_energy() + self.potential_energy()
+
+    def momentum(self) -> np.ndarray:
+        """Linear momentum sum m v of dynamic bodies (kg m/s)."""
+        dyn = self.kind == DYNAMIC
+        return np.sum(self.mass[dyn, None] * self.vel[dyn], axis=0)
+
+    def angular_momentum(self, about=(0.0, 0.0)) -> float:
+        """L = sum (r x m v + I omega) about a world point (default the origin) (kg m^2/s)."""
+        dyn = self.kind == DYNAMIC
+        r = self.com[dyn] - np.asarray(about, dtype=float)
+        v = self.vel[dyn]
+        m = self.mass[dyn]
+        return float(
+            np.sum(m * (r[:, 0] * v[:, 1] - r[:, 1] * v[:, 0]) + self.moment[dyn] * self.omega[dyn])
+        )
+
+    def orientation_drift(self) -> np.ndarray:
+        """Per-body drift of the stored orientations (0 for scalar angles)."""
+        return orientation.drift_of(self.orientation_kind, self.rot)
+
+    def to_scene(self) -> dict:
+        """The world as a scene-file dict (current state as the initial state)."""
+        from sandbox.build import world_to_scene
+
+        return world_to_scene(self)
+
+    def __repr__(self) -> str:
+        return f"World({self.name!r}, {len(self.bodies)} bodies, t={self.time:.4f})"
