@@ -233,7 +233,8 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
         return args.func(args)
     except (CliError, SceneError) as err:
-        print(f"error: {err}", file=sys.stderr)
+        path = err.path or "scene"  # a problem with the whole document
+        print(f"error: {path}: {err.message}", file=sys.stderr)
         return 2
     except ValueError as err:  # a setting or value the world itself refused
         print(f"error: {err}", file=sys.stderr)
