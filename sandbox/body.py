@@ -49,9 +49,8 @@ class Body:
         self.shapes: list = []
         self.mass_override = mass
         self.moment_override = moment
-        self.constant_force = np.array(force, dtype=float)
-        self.constant_torque = float(torque)
-        self.controller = None
+        self._constant = (np.array(force, dtype=float), float(torque))
+        self._controller = None
         self.world = None
         self.index = -1
         self._init = {
@@ -86,6 +85,45 @@ class Body:
         if self.moment_override is not None:
             moment = float(self.moment_override)
         return mass, np.asarray(props.centroid, dtype=float), moment
+
+    @property
+    def controller(self):
+        """``controller(body, world)``, called at the start of every step to apply forces."""
+        return self._controller
+
+    @controller.setter
+    def controller(self, fn) -> None:
+        self._controller = fn
+        if self.world is not None:
+            self.world._controllers_changed()
+
+    @property
+    def constant_force(self) -> np.ndarray:
+        """A force (N) applied at the centre of mass every step."""
+        if self.world is None:
+            return self._constant[0]
+        return self.world.const_force[self.index]
+
+    @constant_force.setter
+    def constant_force(self, value) -> None:
+        if self.world is None:
+            self._constant = (np.array(value, dtype=float), self._constant[1])
+        else:
+            self.world.const_force[self.index] = value
+
+    @property
+    def constant_torque(self) -> float:
+        """A torque (N m) applied every step."""
+        if self.world is None:
+            return self._constant[1]
+        return float(self.world.const_torque[self.index])
+
+    @constant_torque.setter
+    def constant_torque(self, value: float) -> None:
+        if self.world is None:
+            self._constant = (self._constant[0], float(value))
+        else:
+            self.world.const_torque[self.index] = float(value)
 
     # --- state (views into the world arrays) -------------------------------------------------
     def _w(self):

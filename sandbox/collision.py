@@ -67,7 +67,7 @@ def detect(world, margin: float = 0.0):
 
 def solve_velocities(world, dt: float):
     """Find contacts and let the world's solver change velocities; returns the manifolds."""
-    has_shapes = sum(len(b.shapes) for b in world.bodies) >= 2
+    has_shapes = len(world.geometry()) >= 2
     manifolds = detect(world, world.settings.contact_margin) if has_shapes else None
     if (manifolds is None or len(manifolds) == 0) and not world.joints:
         world.stats.setdefault("contacts", 0)

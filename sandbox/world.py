@@ -47,6 +47,7 @@ class World:
         self._geometry: Geometry | None = None
         self._analytic_ref = None
         self._solver_cache: dict = {}
+        self._controlled: list[Body] = []
         self._alloc(0)
 
     # --- arrays -------------------------------------------------------------------------------
@@ -64,6 +65,8 @@ class World:
         self.inv_moment = np.zeros(n)
         self.force = np.zeros((n, 2))
         self.torque = np.zeros(n)
+        self.const_force = np.zeros((n, 2))
+        self.const_torque = np.zeros(n)
         self.ccd = np.zeros(n, dtype=bool)
 
     def _grow(self) -> int:
@@ -100,6 +103,8 @@ class World:
         self.vel[i] = init["velocity"]
         self.omega[i] = init["angular_velocity"]
         self.ccd[i] = init["ccd"]
+        self.const_force[i], self.const_torque[i] = body._constant
+        self._controllers_changed()
         self._set_angle(i, init["angle"])
         self._update_mass(body, origin=init["position"])
         return body
@@ -147,6 +152,9 @@ class World:
             self.inv_mass[i] = self.inv_moment[i] = 0.0
         self._geometry = None
         self._state_changed()
+
+    def _controllers_changed(self) -> None:
+        self._controlled = [b for b in self.bodies if b.controller is not None]
 
     def _shapes_changed(self, body: Body) -> None:
         self._update_mass(body)
@@ -205,12 +213,10 @@ class World:
         if massless.any():
             name = self.bodies[int(np.argmax(massless))].name
             raise ValueError(f"body {name!r}: a dynamic body needs shapes or a mass and moment")
-        for body in self.bodies:
-            if body.controller is not None:
-                body.controller(body, self)
-            if body.constant_torque or body.constant_force.any():
-                self.force[body.index] += body.constant_force
-                self.torque[body.index] += body.constant_torque
+        for body in self._controlled:
+            body.controller(body, self)
+        self.force += self.const_force
+        self.torque += self.const_torque
         if self.settings.integrator == "analytic":
             self._step_analytic(dt)
         else:
