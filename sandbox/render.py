@@ -1,0 +1,428 @@
+"""Headless rendering of recordings to PNG and GIF (matplotlib's Agg canvas, Pillow encoder).
+
+One or several runs of a scene are drawn overlaid, one colour per run (as Box2D's Solver2D
+testbed does), static bodies grey, each shape with an orientation marker (centre to rim for a
+circle, centre to the middle of the first edge for a polygon). An optional side panel plots
+recorded series (energy, momentum, ...) against time with a moving cursor.
+
+Speed: the figure and its artists are built once; each frame only moves vertices. Every shape
+is a polygon (a circle is a ``circle_sides``-gon) padded to a common vertex count, so all
+shapes of a run are placed in one numpy expression and handed to one ``PolyCollection``; the
+static parts of the figure are drawn once and restored from a saved background (blitting).
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
+from matplotlib.patches import Patch
+from PIL import Image
+from tqdm import tqdm
+
+from sandbox.atomic import atomic_write
+from sandbox.recording import CircleOutline, OutlineArrays, Recording, bounds, place, record
+
+__all__ = [
+    "CircleOutline",
+    "FrameRenderer",
+    "Recording",
+    "record",
+    "render_frames",
+    "render_gif",
+    "render_png",
+]
+
+DEFAULT_COLORS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C8", "C9")
+STATIC_FACE = (0.62, 0.62, 0.62, 0.7)
+STATIC_EDGE = (0.35, 0.35, 0.35, 1.0)
+FILL_ALPHA = 0.4
+_DPI = 100
+_PROGRESS_FRAMES = 50  # renders longer than this show a progress bar (on a terminal)
+
+
+def _fit_view(view: Sequence[float], aspect: float, margin: float) -> tuple[float, ...]:
+    """Grow ``view`` by ``margin`` (fraction of its size), then to width/height = ``aspect``."""
+    xmin, xmax, ymin, ymax = (float(v) for v in view)
+    size = max(xmax - xmin, ymax - ymin)
+    pad = margin * size if size > 0 else 1.0
+    xmin, xmax, ymin, ymax = xmin - pad, xmax + pad, ymin - pad, ymax + pad
+    w, h = xmax - xmin, ymax - ymin
+    cx, cy = 0.5 * (xmin + xmax), 0.5 * (ymin + ymax)
+    if w / h < aspect:
+        w = h * aspect
+    else:
+        h = w / aspect
+    return cx - 0.5 * w, cx + 0.5 * w, cy - 0.5 * h, cy + 0.5 * h
+
+
+def _as_runs(runs: Recording | Sequence[Recording]) -> list[Recording]:
+    if isinstance(runs, Recording):
+        return [runs]
+    runs = list(runs)
+    if not runs or not all(isinstance(r, Recording) for r in runs):
+        raise TypeError("runs must be a Recording or a non-empty list of Recordings")
+    return runs
+
+
+class FrameRenderer:
+    """A figure built once for ``runs``; :meth:`frame` returns the RGB pixels of frame ``k``.
+
+    ``runs``: a Recording or a list of them (same scene, same duration), overlaid in
+    ``colors`` (default matplotlib's cycle) with a legend of ``labels``. ``panel``: a series
+    name or list of names plotted beside the scene against time. ``trail``: True draws each
+    moving body's origin path so far, an int only its last ``trail`` frames. ``view``:
+    ``(xmin, xmax, ymin, ymax)`` in metres (default: every shape in every frame), grown by
+    ``margin`` and to equal aspect. ``axes``: draw ticks in metres. Image height is ``size_px``;
+    width is ``size_px`` plus ``panel_width * size_px`` with a panel.
+    """
+
+    def __init__(
+        self,
+        runs: Recording | Sequence[Recording],
+        size_px: int = 480,
+        labels: Sequence[str] | None = None,
+        colors: Sequence[Any] | None = None,
+        panel: str | Sequence[str] | None = None,
+        trail: bool | int = False,
+        view: Sequence[float] | None = None,
+        margin: float = 0.05,
+        axes: bool = False,
+        show_time: bool = True,
+        title: str | None = None,
+        circle_sides: int = 20,
+        panel_width: float = 1.0,
+    ) -> None:
+        self.runs = _as_runs(runs)
+        for r in self.runs:
+            if len(r) == 0:
+                raise ValueError("a recording to render needs at least one frame")
+        if size_px < 16:
+            raise ValueError(f"size_px must be at least 16, got {size_px}")
+        self.n_frames = max(len(r) for r in self.runs)
+        self.poses = [r.poses() for r in self.runs]
+        self.shapes = [OutlineArrays.of(r, circle_sides) for r in self.runs]
+        colors = list(colors) if colors is not None else list(DEFAULT_COLORS)
+        if len(colors) < len(self.runs):
+            raise ValueError(f"{len(self.runs)} runs need as many colors, got {len(colors)}")
+        self.colors = [to_rgba(c) for c in colors[: len(self.runs)]]
+        if labels is None and len(self.runs) > 1:
+            labels = [f"run {i + 1}" for i in range(len(self.runs))]
+        if labels is not None and len(labels) != len(self.runs):
+            raise ValueError(f"{len(self.runs)} runs need as many labels, got {len(labels)}")
+        panels = [panel] if isinstance(panel, str) else list(panel or [])
+        for name in panels:
+            for i, r in enumerate(self.runs):
+                if name not in r.series:
+                    raise KeyError(f"run {i} has no series {name!r} (has {sorted(r.series)})")
+        self.trail = int(trail) if not isinstance(trail, bool) else (-1 if trail else 0)
+
+        scale = size_px / 480.0
+        width_px = size_px + (int(round(panel_width * size_px)) if panels else 0)
+        self.fig = Figure(figsize=(width_px / _DPI, size_px / _DPI), dpi=_DPI)
+        self.canvas = FigureCanvasAgg(self.fig)
+        fontsize = max(5.0, 9.0 * scale)
+        em = fontsize * _DPI / 72.0  # font size in pixels
+        pad = 3.2 * em if axes else 0.0  # room for tick labels
+        top = 0.3 * pad + (1.8 * em if title else 0.0)
+        box_w, box_h = size_px - 1.3 * pad, size_px - pad - top
+        ax = self.fig.add_axes((pad / width_px, pad / size_px, box_w / width_px, box_h / size_px))
+        self.ax = ax
+        if not axes:
+            ax.set_axis_off()
+        ax.tick_params(labelsize=fontsize)
+        if view is None:
+            found = [bounds(s, p) for s, p in zip(self.shapes, self.poses, strict=True)]
+            b = np.array([f for f in found if f is not None]).reshape(-1, 4)
+            if len(b):
+                view = (b[:, 0].min(), b[:, 1].max(), b[:, 2].min(), b[:, 3].max())
+            else:
+                view = (-1.0, 1.0, -1.0, 1.0)  # nothing finite to show
+        else:
+            margin = 0.0
+        self.view = _fit_view(view, box_w / box_h, margin)
+        ax.set_xlim(self.view[0], self.view[1])
+        ax.set_ylim(self.view[2], self.view[3])
+        if title:
+            ax.set_title(title, fontsize=fontsize)
+
+        lw = max(0.72, 1.0 * scale)  # points; never thinner than one pixel (0.72 pt at 100 dpi)
+        self.polys, self.markers, self.trails = [], [], []
+        for color, shapes in zip(self.colors, self.shapes, strict=True):
+            face = np.tile((*color[:3], FILL_ALPHA), (len(shapes.body), 1))
+            edge = np.tile(color, (len(shapes.body), 1))
+            face[shapes.static], edge[shapes.static] = STATIC_FACE, STATIC_EDGE
+            poly = PolyCollection(
+                [], facecolors=face, edgecolors=edge, linewidths=lw, animated=True
+            )
+            ax.add_collection(poly)
+            self.polys.append(poly)
+            # markers: one polyline broken by NaNs per colour (moving bodies, static bodies)
+            markers = []
+            for mask, c in ((~shapes.static, color), (shapes.static, STATIC_EDGE)):
+                if mask.any():
+                    (line,) = ax.plot([], [], color=c, linewidth=lw, animated=True)
+                    markers.append((np.flatnonzero(mask), line))
+            self.markers.append(markers)
+            if self.trail:
+                line = LineCollection(
+                    [], colors=[(*color[:3], 0.6)], linewidths=0.8 * lw, animated=True
+                )
+                ax.add_collection(line)
+                self.trails.append(line)
+        self.movers = [np.array([t != "static" for t in r.types], dtype=bool) for r in self.runs]
+        self.animated: list[Any] = [*self.trails]  # drawn over the saved background, in order
+        for poly, markers in zip(self.polys, self.markers, strict=True):
+            self.animated += [poly, *(line for _, line in markers)]
+        if labels is not None:
+            handles = [
+                Patch(facecolor=(*c[:3], FILL_ALPHA), edgecolor=c, label=str(lab))
+                for c, lab in zip(self.colors, labels, strict=True)
+            ]
+            legend = ax.legend(handles=handles, loc="upper right", fontsize=fontsize)
+            legend.set_animated(True)
+            self.animated.append(legend)
+        self.time_text = None
+        if show_time:
+            self.time_text = ax.text(
+                0.02,
+                0.98,
+                "",
+                transform=ax.transAxes,
+                ha="left",
+                va="top",
+                fontsize=fontsize,
+                animated=True,
+            )
+            self.animated.append(self.time_text)
+        self._build_panels(panels, size_px, width_px, scale, fontsize)
+        self.canvas.draw()
+        self.background = self.canvas.copy_from_bbox(self.fig.bbox)
+
+    def _build_panels(
+        self, panels: list[str], size_px: int, width_px: int, scale: float, fontsize: float
+    ) -> None:
+        self.cursors, self.dots = [], []
+        if not panels:
+            return
+        em = fontsize * _DPI / 72.0  # font size in pixels: margins leave room for tick labels
+        left, right, bottom, top, gap = 5.8 * em, 1.0 * em, 3.8 * em, 1.0 * em, 1.4 * em
+        h = (size_px - bottom - top - gap * (len(panels) - 1)) / len(panels)
+        t_all = np.concatenate([np.asarray(r.times, dtype=float) for r in self.runs])
+        t0, t1 = float(t_all.min()), float(t_all.max())
+        for j, name in enumerate(panels):
+            y = bottom + (len(panels) - 1 - j) * (h + gap)
+            ax = self.fig.add_axes(
+                (
+                    (size_px + left) / width_px,
+                    y / size_px,
+                    (width_px - size_px - left - right) / width_px,
+                    h / size_px,
+                )
+            )
+            for r, c in zip(self.runs, self.colors, strict=True):
+                ax.plot(r.times, r.series[name], color=c, linewidth=1.2 * scale)
+            ax.relim()
+            ax.autoscale_view()
+            ax.set_autoscale_on(False)  # the cursor and dots must not move the limits
+            ax.set_xlim(t0, t1 if t1 > t0 else t0 + 1.0)
+            ax.set_ylabel(name, fontsize=fontsize)
+            ax.tick_params(labelsize=fontsize)
+            ax.grid(alpha=0.3)
+            if j == len(panels) - 1:
+                ax.set_xlabel("t (s)", fontsize=fontsize)
+            else:
+                ax.tick_params(labelbottom=False)
+            cursor = ax.axvline(t0, color="0.2", linewidth=0.8 * scale, animated=True)
+            dots = ax.scatter(
+                np.zeros(len(self.runs)),
+                np.zeros(len(self.runs)),
+                c=self.colors,
+                s=18 * scale**2,
+                zorder=3,
+                animated=True,
+            )
+            self.cursors.append((name, cursor))
+            self.dots.append(dots)
+            self.animated += [cursor, dots]
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """Image (width, height) in pixels."""
+        w, h = self.canvas.get_width_height()
+        return int(w), int(h)
+
+    def frame(self, k: int) -> np.ndarray:
+        """RGB pixels ``(height, width, 3)`` uint8 of frame ``k`` (negative counts from the end)."""
+        if not -self.n_frames <= k < self.n_frames:
+            raise IndexError(f"frame {k} out of range for {self.n_frames} frames")
+        k %= self.n_frames
+        ks = [min(k, len(r) - 1) for r in self.runs]
+        for i, (shapes, poses) in enumerate(zip(self.shapes, self.poses, strict=True)):
+            pose = poses[ks[i]]
+            self.polys[i].set_verts(place(shapes.local, shapes.body, pose))
+            ends = place(shapes.marker, shapes.body, pose)
+            for index, line in self.markers[i]:
+                xy = ends[index].reshape(-1, 2)
+                line.set_data(xy[:, 0], xy[:, 1])
+            if self.trail:
+                start = 0 if self.trail < 0 else max(0, ks[i] - self.trail + 1)
+                path = poses[start : ks[i] + 1][:, self.movers[i], :2]
+                self.trails[i].set_segments(path.transpose(1, 0, 2))
+        times = [r.times[kr] for r, kr in zip(self.runs, ks, strict=True)]
+        if self.time_text is not None:
+            self.time_text.set_text(f"t = {times[0]:.2f} s")
+        for (name, cursor), dots in zip(self.cursors, self.dots, strict=True):
+            cursor.set_xdata([times[0], times[0]])
+            values = [r.series[name][kr] for r, kr in zip(self.runs, ks, strict=True)]
+            dots.set_offsets(np.column_stack([times, values]))
+        self.canvas.restore_region(self.background)
+        for artist in self.animated:
+            artist.axes.draw_artist(artist)
+        return np.asarray(self.canvas.buffer_rgba())[..., :3].copy()
+
+    def palette_colors(self) -> np.ndarray:
+        """RGB uint8 colours this renderer draws with (run fills and edges, greys, white)."""
+        cols = [(1, 1, 1, 1), (0, 0, 0, 1), STATIC_EDGE, STATIC_FACE, (0.2, 0.2, 0.2, 1)]
+        for c in self.colors:
+            cols += [c, (*c[:3], FILL_ALPHA), (*c[:3], 0.6)]
+        rgb = [np.array(c[:3]) * c[3] + (1.0 - c[3]) for c in cols]  # over a white background
+        return np.clip(np.round(np.array(rgb) * 255), 0, 255).astype(np.uint8)
+
+    def close(self) -> None:
+        self.fig.clear()
+
+    def __enter__(self) -> FrameRenderer:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def render_frames(
+    runs: Recording | Sequence[Recording],
+    frames: Sequence[int] | None = None,
+    progress: bool = False,
+    **options: Any,
+) -> Iterator[np.ndarray]:
+    """RGB frames ``(height, width, 3)`` uint8 of ``runs`` (options as :class:`FrameRenderer`).
+
+    ``frames``: the frame indices to draw (default all). The figure is built once and reused.
+    """
+    with FrameRenderer(runs, **options) as renderer:
+        ks = range(renderer.n_frames) if frames is None else list(frames)
+        show = progress and len(ks) > _PROGRESS_FRAMES and sys.stderr.isatty()
+        for k in tqdm(ks, unit="frame", leave=False, disable=not show):
+            yield renderer.frame(k)
+
+
+def _source_runs(source: Any) -> Recording | list[Recording]:
+    """A Recording, a list of them, or a world (its current state as a one-frame Recording)."""
+    if isinstance(source, Recording):
+        return source
+    if isinstance(source, (list, tuple)):
+        return _as_runs(source)
+    if hasattr(source, "bodies"):
+        rec = Recording.from_world(source)
+        rec.capture(source)
+        return rec
+    raise TypeError(f"cannot render a {type(source).__name__}")
+
+
+def render_png(
+    source: Any, path: str | Path, frame: int = -1, size_px: int = 480, **options: Any
+) -> Path:
+    """Write frame ``frame`` of ``source`` (Recording(s) or a world's current state) as a PNG.
+
+    Options as :class:`FrameRenderer` (labels, colors, panel, trail, view, axes, ...). The file
+    is written whole or not at all. Returns the path.
+    """
+    with FrameRenderer(_source_runs(source), size_px=size_px, **options) as renderer:
+        rgb = renderer.frame(frame)
+    path = Path(path)
+    with atomic_write(path, "wb") as f:
+        Image.fromarray(rgb).save(f, format="PNG")
+    return path
+
+
+def render_gif(
+    runs: Recording | Sequence[Recording],
+    path: str | Path,
+    fps: float = 30,
+    size_px: int = 480,
+    labels: Sequence[str] | None = None,
+    colors: Sequence[Any] | None = None,
+    panel: str | Sequence[str] | None = None,
+    trail: bool | int = False,
+    stride: int = 1,
+    **options: Any,
+) -> Path:
+    """Write ``runs`` (a Recording or a list, overlaid one colour per run) as a looping GIF.
+
+    Every ``stride``-th frame is drawn and shown for ``1/fps`` s. ``labels`` name the runs in a
+    legend; ``panel`` plots series beside the scene; more options as :class:`FrameRenderer`.
+    All frames share one palette (built from the first frame and the run colours, no
+    dithering); a frame identical to the one before is merged into it (longer duration). The
+    file is written whole or not at all. Returns the path.
+    """
+    if fps <= 0 or stride < 1:
+        raise ValueError(f"need fps > 0 and stride >= 1, got fps={fps}, stride={stride}")
+    path = Path(path)
+    renderer = FrameRenderer(
+        runs, size_px=size_px, labels=labels, colors=colors, panel=panel, trail=trail, **options
+    )
+    with renderer:
+        ks = range(0, renderer.n_frames, stride)
+        show = len(ks) > _PROGRESS_FRAMES and sys.stderr.isatty()
+        bar = tqdm(total=len(ks), desc=path.name, unit="frame", leave=False, disable=not show)
+        first = renderer.frame(0)
+        palette = _palette(first, renderer.palette_colors())
+
+        def quantized(indices: Sequence[int]) -> Iterator[Image.Image]:
+            for k in indices:
+                yield Image.fromarray(renderer.frame(k)).quantize(
+                    palette=palette, dither=Image.Dither.NONE
+                )
+                bar.update()
+
+        head = Image.fromarray(first).quantize(palette=palette, dither=Image.Dither.NONE)
+        bar.update()
+        try:
+            with atomic_write(path, "wb") as f:
+                head.save(
+                    f,
+                    format="GIF",
+                    save_all=True,
+                    append_images=quantized(ks[1:]),
+                    duration=max(1, int(round(1000.0 / fps))),
+                    loop=0,
+                    optimize=False,
+                )
+        finally:
+            bar.close()
+    return path
+
+
+def _palette(first: np.ndarray, colors: np.ndarray) -> Image.Image:
+    """A 256-colour palette: the renderer's own colours exactly, the rest from the first frame.
+
+    Pillow maps pixels to a palette through a coarse colour cache, so frame colours within a
+    few levels of an exact colour are left out: white must stay white, not become 254.
+    """
+    colors = np.unique(colors, axis=0)[:128].astype(np.int16)
+    rest = Image.fromarray(first).quantize(
+        colors=256 - len(colors), method=Image.Quantize.FASTOCTREE
+    )
+    entries = np.asarray(rest.getpalette(), dtype=np.int16).reshape(-1, 3)[: 256 - len(colors)]
+    near = np.abs(entries[:, None, :] - colors[None, :, :]).max(axis=2).min(axis=1) < 8
+    table = np.concatenate([colors, entries[~near]]).astype(np.uint8).ravel()
+    palette = Image.new("P", (1, 1))
+    palette.putpalette(np.concatenate([table, np.zeros(768 - len(table), np.uint8)]).tolist())
+    return palette
