@@ -1,0 +1,429 @@
+"""Continuous collision: distance between convex shapes and time of impact by conservative
+advancement (slides, "Conservative Advancement": estimate the time of impact before the
+collision happens and move only that far).
+
+Shapes are given like the world's shape arrays (``docs/architecture.md``): ``kind`` 0 circle /
+1 polygon, ``radius``, ``center`` (circle centre) and ``verts`` (CCW polygon vertices, an empty
+(0, 2) array for circles), all relative to the body's centre of mass in the body frame. A pose
+is the centre of mass position (m) and the angle (rad). Over a step the pose moves linearly
+from its value at t = 0 to its value at t = 1, in position and in angle.
+
+Conservative advancement: at time t the shapes are d apart along the unit direction n. No point
+of a body turning by dphi over the step moves faster (per unit t) than |dphi| R, R the largest
+distance of the shape from the centre of mass, so along n the gap closes at most at the rate
+
+    bound = |(dp_b - dp_a) . n| + |dphi_a| R_a + |dphi_b| R_b
+
+and t may safely advance by (d - target) / bound. Repeat until d < target + tolerance (impact)
+or t >= 1 (no impact this step).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from sandbox.jit import njit
+
+CIRCLE, POLYGON = 0, 1
+LINEAR_SLOP = 0.005  # m
+
+
+@njit
+def _place(kind, center, verts, px, py, angle, wc, wv):
+    """World frame of a shape at pose (px, py, angle): wc (2,) circle centre, wv polygon verts."""
+    c, s = math.cos(angle), math.sin(angle)
+    wc[0] = px + c * center[0] - s * center[1]
+    wc[1] = py + s * center[0] + c * center[1]
+    if kind == POLYGON:
+        for i in range(verts.shape[0]):
+            wv[i, 0] = px + c * verts[i, 0] - s * verts[i, 1]
+            wv[i, 1] = py + s * verts[i, 0] + c * verts[i, 1]
+
+
+@njit
+def _polygon_point(wv, n, px, py):
+    """Signed distance from the polygon wv[:n] (CCW) to the point p and the unit direction from
+    the polygon to the point: the nearest edge point when outside, the edge of largest
+    separation when inside (negative distance)."""
+    best = -math.inf
+    bnx, bny = 0.0, 1.0
+    for i in range(n):
+        j = i + 1 if i + 1 < n else 0
+        ex, ey = wv[j, 0] - wv[i, 0], wv[j, 1] - wv[i, 1]
+        length = math.sqrt(ex * ex + ey * ey)
+        nx, ny = ey / length, -ex / length  # outward normal of a CCW edge
+        sep = nx * (px - wv[i, 0]) + ny * (py - wv[i, 1])
+        if sep > best:
+            best, bnx, bny = sep, nx, ny
+    if best <= 0.0:
+        return best, bnx, bny
+    # outside: distance to the nearest edge point
+    d2 = math.inf
+    for i in range(n):
+        j = i + 1 if i + 1 < n else 0
+        ax, ay = wv[i, 0], wv[i, 1]
+        ex, ey = wv[j, 0] - ax, wv[j, 1] - ay
+        u = ((px - ax) * ex + (py - ay) * ey) / (ex * ex + ey * ey)
+        u = 0.0 if u < 0.0 else (1.0 if u > 1.0 else u)
+        dx, dy = px - (ax + u * ex), py - (ay + u * ey)
+        q2 = dx * dx + dy * dy
+        if q2 < d2:
+            d2, bnx, bny = q2, dx, dy
+    d = math.sqrt(d2)
+    if d > 0.0:
+        return d, bnx / d, bny / d
+    return 0.0, 0.0, 1.0
+
+
+@njit
+def _polygons(wa, na, wb, nb):
+    """Signed distance between convex polygons a and b and the unit direction from a to b.
+
+    Overlapping: minus the penetration along the best separating axis (SAT). Apart: the smallest
+    vertex-to-edge distance, which for convex polygons is the true distance.
+    """
+    best = -math.inf
+    bnx, bny = 0.0, 1.0
+    for side in range(2):
+        w1, n1, w2, n2 = (wa, na, wb, nb) if side == 0 else (wb, nb, wa, na)
+        flip = 1.0 if side == 0 else -1.0
+        for i in range(n1):
+            j = i + 1 if i + 1 < n1 else 0
+            ex, ey = w1[j, 0] - w1[i, 0], w1[j, 1] - w1[i, 1]
+            length = math.sqrt(ex * ex + ey * ey)
+            nx, ny = ey / length, -ex / length
+            sep = math.inf
+            for k in range(n2):
+                sep = min(sep, nx * (w2[k, 0] - w1[i, 0]) + ny * (w2[k, 1] - w1[i, 1]))
+            if sep > best:
+                best, bnx, bny = sep, flip * nx, flip * ny
+    if best <= 0.0:
+        return best, bnx, bny
+    dmin = math.inf
+    for k in range(nb):  # vertices of b against the edges of a
+        d, nx, ny = _polygon_point(wa, na, wb[k, 0], wb[k, 1])
+        if d < dmin:
+            dmin, bnx, bny = d, nx, ny
+    for k in range(na):  # vertices of a against the edges of b (direction b -> a, flipped)
+        d, nx, ny = _polygon_point(wb, nb, wa[k, 0], wa[k, 1])
+        if d < dmin:
+            dmin, bnx, bny = d, -nx, -ny
+    return dmin, bnx, bny
+
+
+@njit
+def _distance_world(ka, ra, wca, wva, na, kb, rb, wcb, wvb, nb):
+    """Signed distance and unit direction a -> b of two shapes already in the world frame."""
+    if ka == CIRCLE and kb == CIRCLE:
+        dx, dy = wcb[0] - wca[0], wcb[1] - wca[1]
+        d = math.sqrt(dx * dx + dy * dy)
+        if d > 0.0:
+            return d - ra - rb, dx / d, dy / d
+        return -ra - rb, 0.0, 1.0
+    if ka == POLYGON and kb == CIRCLE:
+        d, nx, ny = _polygon_point(wva, na, wcb[0], wcb[1])
+        return d - rb, nx, ny
+    if ka == CIRCLE and kb == POLYGON:
+        d, nx, ny = _polygon_point(wvb, nb, wca[0], wca[1])
+        return d - ra, -nx, -ny
+    return _polygons(wva, na, wvb, nb)
+
+
+@njit
+def distance(
+    kind_a,
+    radius_a,
+    center_a,
+    verts_a,
+    pos_a,
+    angle_a,
+    kind_b,
+    radius_b,
+    center_b,
+    verts_b,
+    pos_b,
+    angle_b,
+):
+    """Signed distance (m) between two convex shapes at the given poses, and the unit direction
+    from a to b along which it is measured: ``(d, nx, ny)``, d < 0 when they overlap."""
+    wca, wcb = np.empty(2), np.empty(2)
+    wva = np.empty((verts_a.shape[0], 2))
+    wvb = np.empty((verts_b.shape[0], 2))
+    _place(kind_a, center_a, verts_a, pos_a[0], pos_a[1], angle_a, wca, wva)
+    _place(kind_b, center_b, verts_b, pos_b[0], pos_b[1], angle_b, wcb, wvb)
+    return _distance_world(
+        kind_a, radius_a, wca, wva, verts_a.shape[0], kind_b, radius_b, wcb, wvb, verts_b.shape[0]
+    )
+
+
+@njit
+def bound_radius(kind, radius, center, verts):
+    """Radius about the centre of mass enclosing the shape (m): |c| + r, or max |v_i|."""
+    if kind == CIRCLE:
+        return math.sqrt(center[0] ** 2 + center[1] ** 2) + radius
+    r = 0.0
+    for i in range(verts.shape[0]):
+        r = max(r, math.sqrt(verts[i, 0] ** 2 + verts[i, 1] ** 2))
+    return r
+
+
+@njit
+def _advance(shape_a, motion_a, shape_b, motion_b, target, tol, max_iterations, wca, wva, wcb, wvb):
+    """Conservative advancement of ``shape = (kind, radius, center, verts, bound)`` along
+    ``motion = (x0, y0, angle0, x1, y1, angle1)``; returns t in [0, 1], or -1.0 when the shapes
+    are already within ``target + tol`` at t = 0. Work buffers wca, wcb (2,), wva, wvb (n, 2)."""
+    ka, ra, ca, va, bound_a = shape_a
+    kb, rb, cb, vb, bound_b = shape_b
+    xa0, ya0, aa0, xa1, ya1, aa1 = motion_a
+    xb0, yb0, ab0, xb1, yb1, ab1 = motion_b
+    dpx = (xb1 - xb0) - (xa1 - xa0)  # relative displacement over the step
+    dpy = (yb1 - yb0) - (ya1 - ya0)
+    spin = abs(aa1 - aa0) * bound_a + abs(ab1 - ab0) * bound_b
+    t = 0.0
+    for it in range(max_iterations):
+        # poses interpolated linearly in position and angle
+        _place(
+            ka,
+            ca,
+            va,
+            xa0 + t * (xa1 - xa0),
+            ya0 + t * (ya1 - ya0),
+            aa0 + t * (aa1 - aa0),
+            wca,
+            wva,
+        )
+        _place(
+            kb,
+            cb,
+            vb,
+            xb0 + t * (xb1 - xb0),
+            yb0 + t * (yb1 - yb0),
+            ab0 + t * (ab1 - ab0),
+            wcb,
+            wvb,
+        )
+        d, nx, ny = _distance_world(ka, ra, wca, wva, va.shape[0], kb, rb, wcb, wvb, vb.shape[0])
+        if d < target + tol:
+            return -1.0 if it == 0 else t
+        # slides, "Conservative Advancement": advance by distance / (bound on closing speed)
+        bound = abs(dpx * nx + dpy * ny) + spin
+        if bound <= 1e-15:
+            return 1.0
+        t += (d - target) / bound
+        if t >= 1.0:
+            return 1.0
+    return t
+
+
+@njit
+def time_of_impact(
+    kind_a,
+    radius_a,
+    center_a,
+    verts_a,
+    pos_a0,
+    angle_a0,
+    pos_a1,
+    angle_a1,
+    kind_b,
+    radius_b,
+    center_b,
+    verts_b,
+    pos_b0,
+    angle_b0,
+    pos_b1,
+    angle_b1,
+    target_separation=0.0,
+    tolerance=1e-4,
+    max_iterations=64,
+):
+    """Fraction t in [0, 1] of the step at which shapes a and b first come within
+    ``target_separation`` (m, up to ``tolerance``) of each other; 1.0 when they do not this
+    step, 0.0 when they already are at t = 0. Poses: centre of mass (2,) and angle at t = 0 and
+    t = 1, interpolated linearly."""
+    wca, wcb = np.empty(2), np.empty(2)
+    wva = np.empty((verts_a.shape[0], 2))
+    wvb = np.empty((verts_b.shape[0], 2))
+    shape_a = (
+        kind_a,
+        radius_a,
+        center_a,
+        verts_a,
+        bound_radius(kind_a, radius_a, center_a, verts_a),
+    )
+    shape_b = (
+        kind_b,
+        radius_b,
+        center_b,
+        verts_b,
+        bound_radius(kind_b, radius_b, center_b, verts_b),
+    )
+    motion_a = (pos_a0[0], pos_a0[1], angle_a0, pos_a1[0], pos_a1[1], angle_a1)
+    motion_b = (pos_b0[0], pos_b0[1], angle_b0, pos_b1[0], pos_b1[1], angle_b1)
+    t = _advance(
+        shape_a,
+        motion_a,
+        shape_b,
+        motion_b,
+        target_separation,
+        tolerance,
+        max_iterations,
+        wca,
+        wva,
+        wcb,
+        wvb,
+    )
+    return max(t, 0.0)
+
+
+@njit
+def ccd_fractions(
+    ccd_body_mask,
+    com0,
+    angle0,
+    com1,
+    angle1,
+    shape_body,
+    shape_kind,
+    shape_radius,
+    shape_center,
+    shape_vstart,
+    shape_vcount,
+    verts,
+    candidate_pairs,
+    target_separation=LINEAR_SLOP,
+    tolerance=0.25 * LINEAR_SLOP,
+    max_iterations=64,
+):
+    """For every body, the fraction of this step's motion (com0, angle0 -> com1, angle1) it may
+    take: the earliest time of impact over the ``candidate_pairs`` ((k, 2) shape indices) that
+    involve a body with ``ccd_body_mask`` set, 1.0 for other bodies and when nothing is hit.
+
+    Pairs already within ``target_separation + tolerance`` at the start are left to the
+    discrete narrowphase (its contact margin should be at least that), so a body resting on
+    the ground is never frozen.
+    """
+    n = com0.shape[0]
+    frac = np.ones(n)
+    vmax = 1
+    for k in range(shape_vcount.shape[0]):
+        vmax = max(vmax, shape_vcount[k])
+    wca, wcb = np.empty(2), np.empty(2)
+    wva, wvb = np.empty((vmax, 2)), np.empty((vmax, 2))
+    for q in range(candidate_pairs.shape[0]):
+        i, j = candidate_pairs[q, 0], candidate_pairs[q, 1]
+        bi, bj = shape_body[i], shape_body[j]
+        if bi == bj or not (ccd_body_mask[bi] or ccd_body_mask[bj]):
+            continue
+        va = verts[shape_vstart[i] : shape_vstart[i] + shape_vcount[i]]
+        vb = verts[shape_vstart[j] : shape_vstart[j] + shape_vcount[j]]
+        if shape_kind[i] == CIRCLE:
+            va = verts[0:0]
+        if shape_kind[j] == CIRCLE:
+            vb = verts[0:0]
+        ra, rb = shape_radius[i], shape_radius[j]
+        ka, kb = shape_kind[i], shape_kind[j]
+        ca, cb = shape_center[i], shape_center[j]
+        shape_a = (ka, ra, ca, va, bound_radius(ka, ra, ca, va))
+        shape_b = (kb, rb, cb, vb, bound_radius(kb, rb, cb, vb))
+        motion_a = (com0[bi, 0], com0[bi, 1], angle0[bi], com1[bi, 0], com1[bi, 1], angle1[bi])
+        motion_b = (com0[bj, 0], com0[bj, 1], angle0[bj], com1[bj, 0], com1[bj, 1], angle1[bj])
+        t = _advance(
+            shape_a,
+            motion_a,
+            shape_b,
+            motion_b,
+            target_separation,
+            tolerance,
+            max_iterations,
+            wca,
+            wva,
+            wcb,
+            wvb,
+        )
+        if t < 0.0:  # already in contact: the narrowphase handles it
+            continue
+        if ccd_body_mask[bi] and t < frac[bi]:
+            frac[bi] = t
+        if ccd_body_mask[bj] and t < frac[bj]:
+            frac[bj] = t
+    return frac
+
+
+@njit
+def swept_pairs(ccd_body_mask, com0, com1, shape_body, shape_bound):
+    """Shape pairs (k, 2), i < j, whose swept discs may meet this step and where at least one
+    body has ccd: each shape stays within ``shape_bound`` of its body's centre of mass, which
+    moves from com0 to com1, so its swept box is that segment's box grown by the bound."""
+    m = shape_body.shape[0]
+    box = np.empty((m, 4))
+    for k in range(m):
+        b, r = shape_body[k], shape_bound[k]
+        box[k, 0] = min(com0[b, 0], com1[b, 0]) - r
+        box[k, 1] = min(com0[b, 1], com1[b, 1]) - r
+        box[k, 2] = max(com0[b, 0], com1[b, 0]) + r
+        box[k, 3] = max(com0[b, 1], com1[b, 1]) + r
+    out = np.empty((16, 2), dtype=np.int64)
+    n = 0
+    for i in range(m):
+        if not ccd_body_mask[shape_body[i]]:
+            continue
+        for j in range(m):
+            bj = shape_body[j]
+            if bj == shape_body[i] or (ccd_body_mask[bj] and j < i):
+                continue  # same body, or a ccd pair already listed from its other shape
+            if box[i, 0] > box[j, 2] or box[j, 0] > box[i, 2]:
+                continue
+            if box[i, 1] > box[j, 3] or box[j, 1] > box[i, 3]:
+                continue
+            if n == out.shape[0]:
+                grown = np.empty((2 * n, 2), dtype=np.int64)
+                grown[:n] = out
+                out = grown
+            out[n, 0], out[n, 1] = min(i, j), max(i, j)
+            n += 1
+    return out[:n]
+
+
+def limit_motion(
+    world, dp: np.ndarray, dphi: np.ndarray, target_separation: float | None = None
+) -> None:
+    """Scale the planned increments ``dp`` (n, 2) and ``dphi`` (n,) of the world's ccd bodies
+    (in place) so that each stops at its time of impact, ``target_separation`` (m, default a
+    quarter of the world's contact margin) short of touching; the next step's narrowphase then
+    finds the contact (retroactive detection takes over)."""
+    g = world.geometry()
+    if len(g) < 2 or not np.any(world.ccd):
+        return
+    margin = float(getattr(world.settings, "contact_margin", 0.0))
+    if target_separation is None:
+        target_separation = 0.25 * margin if margin > 0.0 else LINEAR_SLOP
+    com0 = np.ascontiguousarray(world.com, dtype=np.float64)
+    angle0 = np.ascontiguousarray(world.angles(), dtype=np.float64)
+    com1 = com0 + dp
+    angle1 = angle0 + dphi
+    ccd = np.ascontiguousarray(world.ccd, dtype=np.bool_)
+    pairs = swept_pairs(ccd, com0, com1, g.shape_body, g.shape_bound)
+    if len(pairs) == 0:
+        return
+    frac = ccd_fractions(
+        ccd,
+        com0,
+        angle0,
+        com1,
+        angle1,
+        g.shape_body,
+        g.shape_kind,
+        g.shape_radius,
+        g.shape_center,
+        g.shape_vstart,
+        g.shape_vcount,
+        g.verts,
+        pairs,
+        float(target_separation),
+        0.25 * float(target_separation),
+    )
+    dp *= frac[:, None]
+    dphi *= frac
