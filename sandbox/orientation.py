@@ -7,9 +7,8 @@ Slides, "2D Angular Motion":
 
 Each representation offers the same operations: integrate by an angle increment, rotate a vector,
 convert to a matrix or an angle, renormalise, and measure its drift (how far it has strayed from a
-valid rotation). The world keeps every body's orientation in one (n, 4) array, laid out per
-representation (``ANGLE``: [phi, 0, 0, 0]; ``COMPLEX``: [c, s, 0, 0]; ``MATRIX``: [m00, m01, m10,
-m11]), and the compiled kernels at the bottom of this file work on that array.
+valid rotation). The world keeps every body's orientation in one array of 1, 4 or 2 columns, laid out per
+representation (``ANGLE``: [phi]; ``MATRIX``: [m00, m01, m10, m11]; ``COMPLEX``: [c, s]), and the compiled kernels at the bottom of this file work on that array.
 """
 
 from __future__ import annotations
@@ -145,7 +144,7 @@ def make_orientation(
     return REPRESENTATIONS[name](angle)
 
 
-# --- the same formulas over the world's (n, 4) orientation array --------------------------------
+# --- the same formulas over the world's orientation array (n, 1 | 4 | 2) --------------------------
 
 
 @njit

@@ -57,7 +57,8 @@ class World:
         self.local_com = np.zeros((n, 2))
         self.vel = np.zeros((n, 2))
         self.omega = np.zeros(n)
-        self.rot = np.zeros((n, 4))
+        # orientation in the settings' representation: 1, 4 or 2 floats per body
+        self.rot = np.zeros((n, orientation.FLOATS_STORED[self.settings.orientation]))
         self.cs = np.zeros((n, 2))
         self.mass = np.zeros(n)
         self.inv_mass = np.zeros(n)
@@ -192,7 +193,8 @@ class World:
         dyn = self.kind == DYNAMIC
         inv_m, inv_i = self.inv_mass, self.inv_moment
         gravity = np.where(dyn[:, None], self.gravity, 0.0)
-        generators = self.forces
+        # force generators, and joints that act as forces (springs)
+        generators = [*self.forces, *(j for j in self.joints if hasattr(j, "accumulate"))]
 
         def accel(p, v, phi, w):
             f = extra_force.copy()
