@@ -1,0 +1,313 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+# ---
+
+# %% [markdown]
+# # 05 Broadphase: which pairs are worth testing?
+#
+# Slides "Collision Detection Performance" and "Regular Grids".
+#
+# The narrowphase (exact contact points, normals, depths) is expensive, so a cheap first pass
+# decides which pairs of shapes can touch at all. Each shape gets an axis-aligned bounding box
+# (AABB) $[x_{min}, y_{min}, x_{max}, y_{max}]$ and two boxes overlap when
+#
+# $$x_{min,i} \le x_{max,j} \;\wedge\; x_{min,j} \le x_{max,i} \;\wedge\;
+#   y_{min,i} \le y_{max,j} \;\wedge\; y_{min,j} \le y_{max,i}.$$
+#
+# The simplest broadphase tests every pair: $n(n-1)/2$ combinations, which grows as $n^2$. The
+# slides' better approaches partition space or sort coordinates so most far-apart pairs are
+# never looked at:
+#
+# - **grid**: regular cells (hashed, so empty space costs nothing); test only shapes sharing
+#   a cell, each pair once
+# - **quadtree**: split a square into four while a node holds too many shapes; test shapes
+#   sharing a leaf
+# - **kd-tree**: split at the median, across the axis of larger spread; shapes straddling the
+#   line stay at the node
+# - **sap** (sort and sweep, "co-ordinate sorting"): sort boxes by $x_{min}$ and sweep;
+#   only boxes whose intervals overlap are tested
+#
+# All five return exactly the same sorted pair list (a tested invariant), so the simulation is
+# identical whichever is chosen; they differ only in how many overlap tests they make
+# (`pair_tests`) and how long they take.
+
+# %%
+import math
+import time
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import LineCollection, PatchCollection
+from matplotlib.colors import to_rgba
+from matplotlib.patches import Circle, Rectangle
+
+from sandbox.broadphase import STRATEGIES, describe, find_pairs, find_pairs_traced, shape_aabbs
+from sandbox.lessonkit import output_dir, print_table
+
+# knobs
+SIZES = (10, 30, 100, 300, 1000, 3000, 10000)  # numbers of circles in the scaling study
+BRUTE_MAX = 3000  # brute force is skipped above this (10,000 circles = 50 million tests)
+COVER = 0.3  # fraction of the box's area covered by circles: the density kept constant
+RADII = (0.1, 0.5)  # m, circle radii drawn uniformly from this range (mixed sizes)
+PICTURE_N = 120  # circles in the pictures of the structures
+BUDGET = 0.15  # s of timing per strategy and size (the best of several calls is kept)
+SEED = 5
+
+OUT = output_dir("05_broadphase")
+COLOUR = {
+    "brute": "tab:gray",
+    "grid": "tab:blue",
+    "sap": "tab:orange",
+    "quadtree": "tab:green",
+    "kdtree": "tab:red",
+}
+
+
+def circle_aabbs(centres: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """AABBs of circles, one per body, through the engine's `shape_aabbs` (no world needed)."""
+    m = len(radii)
+    return shape_aabbs(
+        np.arange(m),  # shape_body: one body per circle
+        np.zeros(m, dtype=np.int64),  # all circles
+        np.asarray(radii, dtype=float),
+        np.zeros((m, 2)),  # circle centred on its body's centre of mass
+        np.zeros(m, dtype=np.int64),
+        np.zeros(m, dtype=np.int64),
+        np.zeros((0, 2)),  # no polygon vertices
+        np.asarray(centres, dtype=float),
+        np.tile([1.0, 0.0], (m, 1)),  # angle 0: (cos, sin) = (1, 0)
+        0.0,
+    )
+
+
+def random_circles(n: int, rng: np.random.Generator):
+    """n circles of mixed size in a square box sized so they cover COVER of its area."""
+    r = rng.uniform(*RADII, n)
+    side = math.sqrt(np.sum(math.pi * r * r) / COVER)
+    return rng.uniform(0.0, side, (n, 2)), r, side
+
+
+def draw_circles(ax, centres, radii, colour="0.35"):
+    patches = [Circle(c, r) for c, r in zip(centres, radii, strict=True)]
+    ax.add_collection(PatchCollection(patches, facecolor="none", edgecolor=colour, lw=0.8))
+    ax.set_aspect("equal")
+
+
+# %% [markdown]
+# ## The slides' regular grid
+#
+# The slide shows nine bodies on a regular grid and lists the pairs that share a cell:
+# (1,2), (3,4), (3,5), (4,5) and (5,6), with body 5 spanning two cells and 7, 8, 9 alone:
+# "only 5 out of 36 possible combinations tested". The arithmetic holds:
+# $9 \cdot 8 / 2 = 36$. Below, the same layout on 1 m cells, with the engine's grid counting
+# what it tests. A pair sharing several cells would still be tested once (in the lower-left
+# cell both occupy).
+
+# %%
+slide_centres = np.array(
+    [
+        [0.25, 0.25],
+        [0.7, 0.7],
+        [2.25, 0.25],
+        [2.55, 0.35],
+        [2.55, 0.8],
+        [2.3, 1.7],
+        [0.5, 2.5],
+        [1.5, 1.5],
+        [3.5, 2.5],
+    ]
+)
+slide_radii = np.array([0.15, 0.2, 0.15, 0.18, 0.3, 0.2, 0.3, 0.3, 0.3])
+slide_boxes = circle_aabbs(slide_centres, slide_radii)
+pairs, tests, tested = find_pairs_traced("grid", slide_boxes, record=True, cell_size=1.0)
+n_slide = len(slide_radii)
+print(f"{n_slide} bodies: {n_slide * (n_slide - 1) // 2} possible pairs, grid tests {tests}")
+print("tested pairs:", sorted(tuple(int(v) + 1 for v in p) for p in tested))
+print("of which the boxes overlap:", [tuple(int(v) + 1 for v in p) for p in pairs])
+
+fig, ax = plt.subplots(figsize=(4.8, 3.8))
+grid_info = describe("grid", slide_boxes, cell_size=1.0)
+for cx, cy in grid_info["cells"]:
+    ax.add_patch(Rectangle((cx, cy), 1.0, 1.0, color="tab:blue", alpha=0.12))
+for k in range(5):
+    ax.plot([k, k], [0, 3], color="tab:blue", lw=0.6)
+for k in range(4):
+    ax.plot([0, 4], [k, k], color="tab:blue", lw=0.6)
+draw_circles(ax, slide_centres, slide_radii)
+for i, (x, y) in enumerate(slide_centres):
+    ax.text(x, y, str(i + 1), ha="center", va="center", fontsize=9)
+segments = [slide_centres[[i, j]] for i, j in tested]
+ax.add_collection(LineCollection(segments, colors="tab:red", lw=1.5))
+ax.set_xlim(-0.1, 4.1)
+ax.set_ylim(-0.1, 3.1)
+ax.set_title(f"regular grid: {tests} of {n_slide * (n_slide - 1) // 2} pairs tested (red)")
+fig.tight_layout()
+fig.savefig(OUT / "slides_grid.png", dpi=100)
+plt.close(fig)
+
+# %% [markdown]
+# ## Cost against the number of bodies
+#
+# Random circles of mixed size (radius 0.1 to 0.5 m) in a square box whose side grows as
+# $\sqrt{N}$, so the density stays constant and each circle has about the same number of
+# neighbours whatever $N$. For each strategy: the overlap tests it makes and the time per call
+# (best of several calls). Brute force is skipped above `BRUTE_MAX` circles to keep the lesson
+# short: at 10,000 circles it would make 49,995,000 tests per call.
+
+# %%
+rng = np.random.default_rng(SEED)
+results = {name: [] for name in STRATEGIES}  # (N, pair_tests, ms per call, pairs)
+for n in SIZES:
+    centres, radii, _ = random_circles(n, rng)
+    boxes = circle_aabbs(centres, radii)
+    reference = None
+    for name in STRATEGIES:
+        if name == "brute" and n > BRUTE_MAX:
+            continue
+        pairs, tests = find_pairs(name, boxes)  # also compiles on a cold cache
+        if reference is None:
+            reference = pairs
+        assert np.array_equal(pairs, reference), name  # the same list from every strategy
+        best, spent, calls = math.inf, 0.0, 0
+        while calls < 3 or (spent < BUDGET and calls < 200):
+            t0 = time.perf_counter()
+            find_pairs(name, boxes)
+            dt = time.perf_counter() - t0
+            best, spent, calls = min(best, dt), spent + dt, calls + 1
+        results[name].append((n, tests, 1e3 * best, len(pairs)))
+
+rows = []
+for n in SIZES:
+    row = [n]
+    for name in STRATEGIES:
+        hit = [r for r in results[name] if r[0] == n]
+        row += [hit[0][1], hit[0][2]] if hit else ["-", "-"]
+    rows.append(row)
+headers = ["N"] + [f"{name} {what}" for name in STRATEGIES for what in ("tests", "ms")]
+print_table(headers, rows, digits=3)
+
+# %% [markdown]
+# The growth exponent $p$ in $\text{cost} \approx c N^p$ is the slope of the log-log curve,
+# fitted here by least squares over $N \ge 300$ (below that, the fixed cost of a call hides
+# the growth). Brute force tests all pairs: $p = 2$ exactly for the tests. The grid, quadtree
+# and kd-tree test each circle against a bounded neighbourhood, so $p \approx 1$ for the tests.
+# Their time grows a little faster, $p \approx 1.1$ to $1.5$: trees are built in
+# $O(N \log N)$, and a bigger world no longer fits the processor's fastest caches (brute
+# force's time exponent comes out above 2 for the same reason). Sort and sweep on one axis
+# tests every box against all boxes whose intervals on that axis overlap its own: a thin strip
+# holding about $\sqrt{N}$ boxes in a square world, so its tests grow as $N^{1.5}$. Timings
+# vary from run to run and machine to machine; the test counts do not.
+
+# %%
+fit_rows = []
+for name in STRATEGIES:
+    data = np.array([r[:3] for r in results[name] if r[0] >= 300], dtype=float)
+    p_tests = np.polyfit(np.log(data[:, 0]), np.log(data[:, 1]), 1)[0]
+    p_time = np.polyfit(np.log(data[:, 0]), np.log(data[:, 2]), 1)[0]
+    fit_rows.append([name, p_tests, p_time])
+print_table(["strategy", "exponent of tests", "exponent of time"], fit_rows, digits=2)
+
+print()
+for n in (1000, 10000):
+    table = []
+    for name in STRATEGIES:
+        hit = [r for r in results[name] if r[0] == n]
+        if hit:
+            table.append([name, hit[0][1], hit[0][2], hit[0][3]])
+        else:
+            table.append([name, f"{n * (n - 1) // 2} (not run)", "-", "-"])
+    print(f"N = {n}: all pairs n(n-1)/2 = {n * (n - 1) // 2}")
+    print_table(["strategy", "pair tests", "ms per call", "overlapping pairs"], table, digits=3)
+    print()
+
+fig, axes = plt.subplots(1, 2, figsize=(9.6, 4.0))
+for name in STRATEGIES:
+    data = np.array([r[:3] for r in results[name]], dtype=float)
+    axes[0].loglog(data[:, 0], data[:, 1], "o-", color=COLOUR[name], label=name, ms=4)
+    axes[1].loglog(data[:, 0], data[:, 2], "o-", color=COLOUR[name], label=name, ms=4)
+all_n = np.array(SIZES, dtype=float)
+axes[0].loglog(all_n, all_n * (all_n - 1) / 2, ":", color="0.5", label="n(n-1)/2")
+axes[0].set_ylabel("AABB overlap tests per call")
+axes[1].set_ylabel("ms per call")
+for ax in axes:
+    ax.set_xlabel("number of circles N")
+    ax.grid(True, which="both", alpha=0.3)
+axes[0].legend(fontsize=8)
+axes[0].set_title("pair tests")
+axes[1].set_title("time (best of several calls)")
+fig.tight_layout()
+fig.savefig(OUT / "scaling.png", dpi=100)
+plt.close(fig)
+
+# %% [markdown]
+# ## What each structure looks like
+#
+# The same random world of circles, four ways: the grid's occupied cells, the quadtree's
+# nodes, the kd-tree's split lines (shapes crossing a line stay at that node) and the sweep
+# intervals of sort and sweep (sorted by their lower end; a box is tested against the boxes
+# below it in this list until one starts beyond its upper end).
+
+# %%
+centres, radii, side = random_circles(PICTURE_N, np.random.default_rng(SEED + 1))
+boxes = circle_aabbs(centres, radii)
+counts = {name: find_pairs(name, boxes)[1] for name in STRATEGIES}
+print(f"{PICTURE_N} circles, {PICTURE_N * (PICTURE_N - 1) // 2} pairs; tests per strategy:")
+print_table(["strategy", "pair tests"], [[name, counts[name]] for name in STRATEGIES])
+
+fig, axes = plt.subplots(2, 2, figsize=(9.0, 9.0))
+ax = axes[0, 0]
+info = describe("grid", boxes)
+h = info["cell_size"]
+for cx, cy in info["cells"]:
+    ax.add_patch(
+        Rectangle(
+            (cx * h, cy * h), h, h, fc=to_rgba(COLOUR["grid"], 0.15), ec=COLOUR["grid"], lw=0.5
+        )
+    )
+ax.set_title(f"grid: {len(info['cells'])} cells of {h:.2f} m, {counts['grid']} tests")
+
+ax = axes[0, 1]
+info = describe("quadtree", boxes)
+for (x0, y0, x1, y1), leaf in zip(info["rects"], info["leaf"], strict=True):
+    ax.add_patch(
+        Rectangle(
+            (x0, y0),
+            x1 - x0,
+            y1 - y0,
+            fill=False,
+            lw=0.6 if leaf else 1.0,
+            edgecolor=COLOUR["quadtree"],
+        )
+    )
+ax.set_title(f"quadtree: {int(info['leaf'].sum())} leaves, {counts['quadtree']} tests")
+
+ax = axes[1, 0]
+info = describe("kdtree", boxes)
+for reg, a, cut, d in zip(info["region"], info["axis"], info["split"], info["depth"], strict=True):
+    if a == 0:
+        ax.plot([cut, cut], [reg[1], reg[3]], color=COLOUR["kdtree"], lw=2.0 / (1 + 0.4 * d))
+    elif a == 1:
+        ax.plot([reg[0], reg[2]], [cut, cut], color=COLOUR["kdtree"], lw=2.0 / (1 + 0.4 * d))
+kept_inner = int(info["kept"][info["axis"] >= 0].sum())
+ax.set_title(f"kd-tree: {kept_inner} circles on split lines, {counts['kdtree']} tests")
+for ax in (axes[0, 0], axes[0, 1], axes[1, 0]):
+    draw_circles(ax, centres, radii)
+    ax.set_xlim(-0.6, side + 0.6)
+    ax.set_ylim(-0.6, side + 0.6)
+
+ax = axes[1, 1]
+info = describe("sap", boxes)
+lo_hi = info["intervals"][info["order"]]
+ranks = np.arange(PICTURE_N)
+ax.hlines(ranks, lo_hi[:, 0], lo_hi[:, 1], color=COLOUR["sap"], lw=1.5)
+ax.set_xlabel("xy"[info["axis"]] + " (m)")
+ax.set_ylabel("rank in the sorted order")
+ax.set_title(f"sort and sweep on {'xy'[info['axis']]}: {counts['sap']} tests")
+fig.tight_layout()
+fig.savefig(OUT / "structures.png", dpi=90)
+plt.close(fig)
+print("figures written to", OUT.name)

@@ -1,0 +1,169 @@
+"""Axis-aligned bounding boxes: what every broadphase works on, and the pair list it returns.
+
+An AABB is the row ``[xmin, ymin, xmax, ymax]`` (metres, world frame). Two boxes overlap when
+they overlap on both axes; touching boxes (a shared edge or corner) count as overlapping, so the
+test uses ``<=`` (slides, "Collision Detection Performance": the cheap test that decides which
+pairs reach the exact, expensive narrowphase).
+
+The helpers below the public functions are shared by the strategy modules: the filter (static-
+static and same-body pairs are never reported), the overlap test, a growable pair buffer and the
+final sort into the one pair list all strategies return.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from sandbox.jit import njit
+
+
+@njit
+def shape_aabbs(
+    shape_body: np.ndarray,
+    shape_kind: np.ndarray,
+    shape_radius: np.ndarray,
+    shape_center: np.ndarray,
+    shape_vstart: np.ndarray,
+    shape_vcount: np.ndarray,
+    verts: np.ndarray,
+    com: np.ndarray,
+    cs: np.ndarray,
+    margin: float,
+) -> np.ndarray:
+    """World AABBs ``(m, 4)`` ``[xmin, ymin, xmax, ymax]`` of all shapes, grown by ``margin`` (m).
+
+    Geometry is relative to the owning body's centre of mass in the body frame; a body-frame
+    point ``q`` of body ``b`` lies at ``com[b] + R(cs[b]) q`` with ``R(c, s) = [[c, -s], [s, c]]``.
+    Circles (kind 0): centre +- radius. Polygons (kind 1): the extremes of the turned vertices,
+    grown by ``shape_radius`` as well (0 for plain polygons).
+    """
+    m = shape_body.shape[0]
+    out = np.empty((m, 4))
+    for k in range(m):
+        b = shape_body[k]
+        c, s = cs[b, 0], cs[b, 1]
+        px, py = com[b, 0], com[b, 1]
+        grow = shape_radius[k] + margin
+        if shape_kind[k] == 0:
+            qx, qy = shape_center[k, 0], shape_center[k, 1]
+            x = px + c * qx - s * qy
+            y = py + s * qx + c * qy
+            out[k, 0] = x - grow
+            out[k, 1] = y - grow
+            out[k, 2] = x + grow
+            out[k, 3] = y + grow
+        else:
+            x0 = np.inf
+            y0 = np.inf
+            x1 = -np.inf
+            y1 = -np.inf
+            for v in range(shape_vstart[k], shape_vstart[k] + shape_vcount[k]):
+                qx, qy = verts[v, 0], verts[v, 1]
+                x = px + c * qx - s * qy
+                y = py + s * qx + c * qy
+                x0 = min(x0, x)
+                y0 = min(y0, y)
+                x1 = max(x1, x)
+                y1 = max(y1, y)
+            out[k, 0] = x0 - grow
+            out[k, 1] = y0 - grow
+            out[k, 2] = x1 + grow
+            out[k, 3] = y1 + grow
+    return out
+
+
+def swept_aabbs(aabb0: np.ndarray, aabb1: np.ndarray) -> np.ndarray:
+    """Union of the boxes at the start and at the end of a step (continuous collision):
+    ``[min(xmin0, xmin1), min(ymin0, ymin1), max(xmax0, xmax1), max(ymax0, ymax1)]``."""
+    a0 = np.asarray(aabb0, dtype=np.float64)
+    a1 = np.asarray(aabb1, dtype=np.float64)
+    out = np.empty(np.broadcast_shapes(a0.shape, a1.shape))
+    np.minimum(a0[..., :2], a1[..., :2], out=out[..., :2])
+    np.maximum(a0[..., 2:], a1[..., 2:], out=out[..., 2:])
+    return out
+
+
+# ---- shared by the strategy kernels ----------------------------------------------------------
+
+
+@njit
+def skip_pair(static: np.ndarray, body: np.ndarray, i: int, j: int) -> bool:
+    """Pairs never reported, decided without an overlap test: one body, or both static."""
+    if body[i] == body[j]:
+        return True
+    return static[i] and static[j]
+
+
+@njit
+def overlap(aabb: np.ndarray, i: int, j: int) -> bool:
+    """The AABB-vs-AABB test: overlap on x and on y, touching included (``<=``)."""
+    return (
+        aabb[i, 0] <= aabb[j, 2]
+        and aabb[j, 0] <= aabb[i, 2]
+        and aabb[i, 1] <= aabb[j, 3]
+        and aabb[j, 1] <= aabb[i, 3]
+    )
+
+
+@njit
+def put_pair(buf: np.ndarray, k: int, i: int, j: int) -> None:
+    """Write pair ``(min(i, j), max(i, j))`` at row ``k`` of ``buf`` if it fits.
+
+    Kernels keep counting past the end of the buffer; :func:`collect` then runs them again with
+    a buffer of the exact size (a growing array reassigned inside a hot loop makes numba's loop
+    several times slower, so the buffer is grown between runs instead).
+    """
+    if k < buf.shape[0]:
+        if i < j:
+            buf[k, 0] = i
+            buf[k, 1] = j
+        else:
+            buf[k, 0] = j
+            buf[k, 1] = i
+
+
+def collect(kernel, m: int, record: bool, *args):
+    """Run ``kernel(*args, pairs_buf, tested_buf) -> (k, tests)`` and return
+    ``(pairs sorted, tests, tested)``; reruns once with exact sizes if a buffer was too small."""
+    buf = np.empty((4 * m + 64, 2), dtype=np.int64)
+    tested = np.empty((16 * m + 64 if record else 0, 2), dtype=np.int64)
+    k, tests = kernel(*args, buf, tested)
+    if k > len(buf) or (record and tests > len(tested)):
+        buf = np.empty((k, 2), dtype=np.int64)
+        tested = np.empty((tests if record else 0, 2), dtype=np.int64)
+        k, tests = kernel(*args, buf, tested)
+    return sort_pairs(buf, k, m), int(tests), tested[: tests if record else 0].copy()
+
+
+@njit
+def sort_pairs(buf: np.ndarray, k: int, m: int) -> np.ndarray:
+    """Rows ``buf[:k]`` (each ``i < j``) sorted lexicographically, as a new ``(k, 2)`` array.
+
+    Counting sort on the first index (O(m + k)), then each run of equal first index sorted by
+    the second (insertion sort for the usual short runs).
+    """
+    count = np.zeros(m + 1, dtype=np.int64)
+    for r in range(k):
+        count[buf[r, 0] + 1] += 1
+    for i in range(m):
+        count[i + 1] += count[i]
+    out = np.empty((k, 2), dtype=np.int64)
+    fill = count[:m].copy()
+    for r in range(k):
+        i = buf[r, 0]
+        out[fill[i], 0] = i
+        out[fill[i], 1] = buf[r, 1]
+        fill[i] += 1
+    for i in range(m):
+        lo, hi = count[i], count[i + 1]
+        if hi - lo > 32:
+            out[lo:hi, 1] = np.sort(out[lo:hi, 1])
+        else:
+            for a in range(lo + 1, hi):
+                v = out[a, 1]
+                b = a - 1
+                while b >= lo and out[b, 1] > v:
+                    out[b + 1, 1] = out[b, 1]
+                    b -= 1
+                out[b + 1, 1] = v
+    return out
