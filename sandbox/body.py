@@ -110,6 +110,7 @@ class Body:
             self._constant = (np.array(value, dtype=float), self._constant[1])
         else:
             self.world.const_force[self.index] = value
+            self.world._constants_changed()
 
     @property
     def constant_torque(self) -> float:
@@ -124,6 +125,7 @@ class Body:
             self._constant = (self._constant[0], float(value))
         else:
             self.world.const_torque[self.index] = float(value)
+            self.world._constants_changed()
 
     # --- state (views into the world arrays) -------------------------------------------------
     def _w(self):

@@ -19,6 +19,8 @@ from sandbox.body import DYNAMIC, KINEMATIC, STATIC, TYPES, Body
 from sandbox.geometry_arrays import Geometry, build_geometry
 from sandbox.settings import Settings
 
+_EULERS = ("semi_implicit_euler", "explicit_euler")
+
 
 class World:
     """A 2D rigid-body world. SI units, y up, radians counter-clockwise.
@@ -48,6 +50,9 @@ class World:
         self._analytic_ref = None
         self._solver_cache: dict = {}
         self._controlled: list[Body] = []
+        self._checked = False  # masses checked and ccd flag known
+        self._has_ccd = False
+        self._has_constant = False
         self._alloc(0)
 
     # --- arrays -------------------------------------------------------------------------------
@@ -69,6 +74,7 @@ class World:
         self.const_force = np.zeros((n, 2))
         self.const_torque = np.zeros(n)
         self.ccd = np.zeros(n, dtype=bool)
+        self._dphi = np.zeros(n)  # scratch: each body's turn this step
 
     def _grow(self) -> int:
         n = len(self.kind)
@@ -106,6 +112,7 @@ class World:
         self.ccd[i] = init["ccd"]
         self.const_force[i], self.const_torque[i] = body._constant
         self._controllers_changed()
+        self._constants_changed()
         self._set_angle(i, init["angle"])
         self._update_mass(body, origin=init["position"])
         return body
@@ -145,6 +152,7 @@ class World:
             if not (mass > 0 and moment > 0):  # no shapes yet: checked again when stepping
                 self.mass[i] = self.moment[i] = self.inv_mass[i] = self.inv_moment[i] = 0.0
                 self._geometry = None
+                self._checked = False
                 return
             self.mass[i], self.moment[i] = mass, moment
             self.inv_mass[i], self.inv_moment[i] = 1.0 / mass, 1.0 / moment
@@ -152,6 +160,7 @@ class World:
             self.mass[i] = self.moment[i] = np.inf
             self.inv_mass[i] = self.inv_moment[i] = 0.0
         self._geometry = None
+        self._checked = False
         self._state_changed()
 
     def _controllers_changed(self) -> None:
@@ -211,24 +220,54 @@ class World:
         dt = self.dt if dt is None else float(dt)
         if not dt > 0:
             raise ValueError("dt: must be > 0")
+        if not self._checked:
+            self._check_masses()
+        for body in self._controlled:
+            body.controller(body, self)
+        if self._has_constant:
+            self.force += self.const_force
+            self.torque += self.const_torque
+        integrator = self.settings.integrator
+        if integrator == "analytic":
+            self._step_analytic(dt)
+        elif integrator in _EULERS and not self.forces and not self._has_ccd:
+            self._step_euler(dt, explicit=integrator == "explicit_euler")
+        else:
+            self._step_numeric(dt)
+        self.time += dt
+        self.steps += 1
+
+    def _check_masses(self) -> None:
         massless = (self.kind == DYNAMIC) & (self.mass <= 0)
         if massless.any():
             name = self.bodies[int(np.argmax(massless))].name
             raise ValueError(f"body {name!r}: a dynamic body needs shapes or a mass and moment")
-        for body in self._controlled:
-            body.controller(body, self)
-        self.force += self.const_force
-        self.torque += self.const_torque
-        if self.settings.integrator == "analytic":
-            self._step_analytic(dt)
-        else:
-            self._step_numeric(dt)
-        self.force[:] = 0.0
-        self.torque[:] = 0.0
-        self.time += dt
-        self.steps += 1
+        self._has_ccd = bool(self.ccd.any())
+        self._checked = True
+
+    def _constants_changed(self) -> None:
+        self._has_constant = bool(self.const_force.any() or self.const_torque.any())
+
+    def _step_euler(self, dt: float, explicit: bool) -> None:
+        """Fast path: both Euler methods as two compiled passes around the solver."""
+        from sandbox import collision
+
+        g = self.gravity
+        args = (self.force, self.torque, self.inv_mass, self.inv_moment, g[0], g[1], dt)
+        integrators.euler_velocities(self.kind, self.vel, self.omega, *args)
+        self.manifolds = collision.solve_velocities(self, dt)
+        dphi = self._dphi
+        integrators.euler_positions(
+            self.kind, self.com, self.vel, self.omega, *args, explicit, dphi
+        )
+        kind = self.orientation_kind
+        orientation.integrate_rotations(kind, self.rot, dphi, self.settings.renormalise)
+        orientation.cos_sin(kind, self.rot, self.cs)
+        if self.manifolds is not None or self.joints:
+            collision.solve_positions(self, self.manifolds, dt)
 
     def _step_numeric(self, dt: float) -> None:
+        """Any integrator: free-motion increments, impulses in between (docs/architecture.md)."""
         from sandbox import collision
 
         s = self.settings
@@ -252,11 +291,13 @@ class World:
         dphi = dphi + (self.omega - w_free) * dt
         dp[~moving] = 0.0
         dphi[~moving] = 0.0
-        if self.ccd.any():
+        if self._has_ccd:
             collision.limit_ccd_motion(self, dp, dphi)
         self.com += dp
         orientation.integrate_rotations(self.orientation_kind, self.rot, dphi, s.renormalise)
         orientation.cos_sin(self.orientation_kind, self.rot, self.cs)
+        self.force[:] = 0.0
+        self.torque[:] = 0.0
         collision.solve_positions(self, self.manifolds, dt)
 
     def _step_analytic(self, dt: float) -> None:
@@ -285,9 +326,9 @@ class World:
         theta = th0 + w0 * t + 0.5 * alpha * t * t
         orientation.set_angles(self.orientation_kind, self.rot, np.where(moving, theta, th0))
         orientation.cos_sin(self.orientation_kind, self.rot, self.cs)
-        ref = self._analytic_ref
         self.manifolds = None
-        self._analytic_ref = ref  # keep the closed-form reference across steps
+        self.force[:] = 0.0
+        self.torque[:] = 0.0
 
     # --- observation --------------------------------------------------------------------------
     def find_contacts(self) -> list:
