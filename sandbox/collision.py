@@ -40,6 +40,10 @@ def detect(world, margin: float = 0.0):
     # bodies that cannot be pushed (static and kinematic) never collide with each other
     fixed = world.kind[g.shape_body] != DYNAMIC
     pairs, tests = find_pairs(world.settings.broadphase, aabb, fixed, g.shape_body)
+    if world.joints:  # bodies sharing a joint do not collide (as in pymunk's bridge)
+        from sandbox.joints import drop_joined
+
+        pairs = drop_joined(world, pairs, g.shape_body)
     manifolds = narrowphase.collide(
         pairs,
         g.shape_body,

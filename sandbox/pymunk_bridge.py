@@ -32,6 +32,7 @@ from typing import Any
 
 import pymunk
 
+from sandbox.buoyancy import circle_submerged, clip_below, polygon_area_centroid
 from sandbox.geometry import polygon_problem
 
 DEFAULT_DT = 1.0 / 60.0
@@ -69,60 +70,6 @@ def wrap_angle(angle: float) -> float:
 
 
 # ---------------------------------------------------------------- submerged geometry (buoyancy)
-
-
-def polygon_area_centroid(points: Sequence[Sequence[float]]) -> tuple[float, float, float]:
-    """Area (>= 0, m^2) and centroid (x, y) of a simple polygon, either winding (shoelace)."""
-    n = len(points)
-    if n < 3:
-        return 0.0, 0.0, 0.0
-    a2 = cx = cy = 0.0
-    x0, y0 = points[0]
-    for i in range(1, n - 1):  # fan of triangles from vertex 0
-        x1, y1 = points[i]
-        x2, y2 = points[i + 1]
-        cross = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
-        a2 += cross
-        cx += cross * (x0 + x1 + x2)
-        cy += cross * (y0 + y1 + y2)
-    if a2 == 0.0:
-        return 0.0, 0.0, 0.0
-    return abs(0.5 * a2), cx / (3.0 * a2), cy / (3.0 * a2)
-
-
-def clip_below(points: Sequence[Sequence[float]], surface_y: float) -> list[tuple[float, float]]:
-    """The part of a convex polygon with y <= surface_y (Sutherland-Hodgman, one clip line)."""
-    out: list[tuple[float, float]] = []
-    n = len(points)
-    for i in range(n):
-        xa, ya = points[i]
-        xb, yb = points[(i + 1) % n]
-        if ya <= surface_y:
-            out.append((xa, ya))
-        if (ya <= surface_y) != (yb <= surface_y):  # the edge crosses the surface
-            t = (surface_y - ya) / (yb - ya)
-            out.append((xa + t * (xb - xa), surface_y))
-    return out
-
-
-def circle_submerged(
-    cx: float, cy: float, radius: float, surface_y: float
-) -> tuple[float, float, float]:
-    """Area and centroid (x, y) of the part of a circle below y = surface_y.
-
-    With d = surface_y - cy and h = sqrt(r^2 - d^2): the cap above the line has area
-    r^2 acos(d/r) - d h; the submerged part is the rest, with centroid cy - 2 h^3 / (3 A).
-    """
-    d = surface_y - cy
-    if d >= radius:
-        return math.pi * radius * radius, cx, cy
-    if d <= -radius:
-        return 0.0, cx, cy
-    h = math.sqrt(radius * radius - d * d)
-    area = math.pi * radius * radius - (radius * radius * math.acos(d / radius) - d * h)
-    if area <= 0.0:
-        return 0.0, cx, cy
-    return area, cx, cy - 2.0 * h**3 / (3.0 * area)
 
 
 def shape_submerged(shape: pymunk.Shape, surface_y: float) -> tuple[float, float, float]:

@@ -202,8 +202,7 @@ class World:
         dyn = self.kind == DYNAMIC
         inv_m, inv_i = self.inv_mass, self.inv_moment
         gravity = np.where(dyn[:, None], self.gravity, 0.0)
-        # force generators, and joints that act as forces (springs)
-        generators = [*self.forces, *(j for j in self.joints if hasattr(j, "accumulate"))]
+        generators = self._force_generators()
 
         def accel(p, v, phi, w):
             f = extra_force.copy()
@@ -230,12 +229,16 @@ class World:
         integrator = self.settings.integrator
         if integrator == "analytic":
             self._step_analytic(dt)
-        elif integrator in _EULERS and not self.forces and not self._has_ccd:
+        elif integrator in _EULERS and not self._has_ccd and not self._force_generators():
             self._step_euler(dt, explicit=integrator == "explicit_euler")
         else:
             self._step_numeric(dt)
         self.time += dt
         self.steps += 1
+
+    def _force_generators(self) -> list:
+        """Force generators, and joints that act as forces (springs: ``accumulate``)."""
+        return [*self.forces, *(j for j in self.joints if hasattr(j, "accumulate"))]
 
     def _check_masses(self) -> None:
         massless = (self.kind == DYNAMIC) & (self.mass <= 0)
