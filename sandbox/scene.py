@@ -38,7 +38,7 @@ MAX_ITERATIONS = 1000
 BODY_TYPES = ("dynamic", "static", "kinematic")
 SHAPE_TYPES = ("circle", "polygon", "box")
 JOINT_TYPES = ("pin", "pivot", "spring")
-FORCE_TYPES = ("drag", "buoyancy")
+FORCE_TYPES = ("drag", "buoyancy", "constant")
 IGNORED_KEYS = ("description", "comment")  # and every key starting with "_"
 
 _TOP_KEYS = ("version", "name", "gravity", "dt", "settings", "bodies", "joints", "forces")
@@ -61,6 +61,7 @@ _JOINT_KEYS = {
 _FORCE_KEYS = {
     "drag": ("type", "linear", "quadratic", "angular", "bodies"),
     "buoyancy": ("type", "surface_y", "fluid_density", "linear_drag", "angular_drag", "bodies"),
+    "constant": ("type", "force", "torque", "point", "bodies"),
 }
 _REQUIRED = object()
 
@@ -437,6 +438,10 @@ def _force(value: Any, path: str, kinds: dict[str, str]) -> dict:
     if kind == "drag":
         for key in ("linear", "quadratic", "angular"):
             force[key] = _get(raw, path, key, _number, 0.0, ge=0.0)
+    elif kind == "constant":  # extension: a fixed force (N) at a body-frame point, a torque (N m)
+        force["force"] = _get(raw, path, "force", _vector, [0.0, 0.0])
+        force["torque"] = _get(raw, path, "torque", _number, 0.0)
+        force["point"] = _get(raw, path, "point", _vector, None, nullable=True)
     else:
         force["surface_y"] = _get(raw, path, "surface_y", _number)
         force["fluid_density"] = _get(raw, path, "fluid_density", _number, gt=0.0)
