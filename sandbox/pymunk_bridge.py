@@ -318,7 +318,7 @@ class PymunkScene:
 
     def _add_force(self, spec: Mapping[str, Any], path: str) -> None:
         kind = spec.get("type")
-        if kind not in ("drag", "buoyancy"):
+        if kind not in ("drag", "buoyancy", "constant"):
             raise BridgeError(f"{path}.type", f"unknown force type {kind!r}")
         names = spec.get("bodies")
         if names is None:
@@ -356,6 +356,15 @@ class PymunkScene:
         gravity = tuple(self.space.gravity)
         for spec, targets in self._generators:
             for body in targets:
+                if spec["type"] == "constant":  # world-frame force at a body-frame point
+                    force = tuple(spec.get("force", (0.0, 0.0)))
+                    point = spec.get("point")
+                    if point is None:
+                        body.force += force
+                    else:
+                        body.apply_force_at_world_point(force, body.local_to_world(tuple(point)))
+                    body.torque += spec.get("torque", 0.0)
+                    continue
                 if spec["type"] == "drag":
                     fx, fy, torque = drag_force(body, spec)
                 else:
