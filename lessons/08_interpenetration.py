@@ -1,0 +1,271 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+# ---
+
+# %% [markdown]
+# # 08 Solving interpenetration
+#
+# Slide "Solving Interpenetration". Collisions are found after the bodies have moved, so they
+# already overlap by a depth $p$ along the normal $\hat{\mathbf{n}}$ (from body 1 to body 2).
+# The impulse fixes the velocities; the positions still need pushing apart. Three options
+# (`settings.penetration`):
+#
+# 1. **simple** (`half`): each body moves away by half the penetration,
+#    $\mathbf{p}'_1 = \mathbf{p}_1 - \frac{p}{2}\hat{\mathbf{n}}$,
+#    $\mathbf{p}'_2 = \mathbf{p}_2 + \frac{p}{2}\hat{\mathbf{n}}$
+# 2. **better** (`mass_weighted`): the lighter body moves more,
+#    $\mathbf{p}'_1 = \mathbf{p}_1 - \frac{m_2}{m_1 + m_2} p\,\hat{\mathbf{n}}$,
+#    $\mathbf{p}'_2 = \mathbf{p}_2 + \frac{m_1}{m_1 + m_2} p\,\hat{\mathbf{n}}$
+#    (the centre of mass of the pair stays where it was)
+# 3. **even better** (`impulse`): the collision equation applied to positions. For each contact
+#    point a pseudo-impulse $\lambda = -C / k$ with the collision equation's denominator
+#    $k = \frac{1}{m_1} + \frac{1}{m_2} + \frac{(\mathbf{r}_1\times\hat{\mathbf{n}})^2}{I_1}
+#    + \frac{(\mathbf{r}_2\times\hat{\mathbf{n}})^2}{I_2}$ and $C = \beta\,(\text{separation}
+#    + \text{slop})$ moves *and turns* both bodies:
+#    $\mathbf{p}_1 \mathrel{-}= \lambda\hat{\mathbf{n}} / m_1$,
+#    $\theta_1 \mathrel{-}= (\mathbf{r}_1\times\lambda\hat{\mathbf{n}}) / I_1$, the opposite for
+#    body 2. It removes a fraction $\beta$ (`settings.baumgarte`) per pass, a few passes per step.
+#
+# All three leave `settings.slop` (5 mm) of overlap so that resting contacts stay in touch.
+# A static body has infinite mass: options 1 and 2 then both move the other body by all of $p$,
+# so they only differ between two moving bodies.
+
+# %%
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from sandbox.body import Body
+from sandbox.lessonkit import output_dir, print_table
+from sandbox.recording import OutlineArrays, place, record
+from sandbox.render import render_gif
+from sandbox.shapes import Box
+from sandbox.world import World
+
+# knobs
+OPTIONS = ("half", "mass_weighted", "impulse")
+LABELS = {"half": "1: half", "mass_weighted": "2: mass weighted", "impulse": "3: impulse"}
+COLORS = {"half": "C3", "mass_weighted": "C0", "impulse": "C2"}
+HEAVY_DENSITY = 3.0  # kg/m^2 of the 2 x 1 m box (6 kg); the 1 x 1 m box has density 1 (1 kg)
+OVERLAP = 0.25  # m, how deep the light box's corner starts inside the heavy one
+LIGHT_TILT = 30.0  # degrees
+PAIR_STEPS = 30
+TILT = 30.0  # degrees, box dropped corner-first into the ground
+DIVE = 0.3  # m, how deep its corner starts below the ground surface
+DURATION = 1.5  # s
+G = 9.81  # m/s^2
+DT = 1.0 / 60.0
+GIF_EVERY = 2
+
+OUT = output_dir("08_interpenetration")
+
+
+def max_depth(world: World) -> float:
+    """Deepest overlap of any contact at the current state (m, 0 when apart)."""
+    return max([c.depth for c in world.find_contacts()] + [0.0])
+
+
+# %% [markdown]
+# ## Two overlapping boxes of unequal mass
+#
+# No gravity and no velocities, so nothing but the penetration fix moves the boxes: a light
+# 1 kg box, tilted 30 degrees and centred 0.5 m right of a heavy 6 kg box, has its lowest
+# corner 0.25 m deep in the heavy box. Expected (with $p$ = 0.25 m - slop):
+#
+# - option 1: both boxes move $p/2$ = 0.1225 m; the pair's centre of mass moves
+# - option 2: the heavy box moves $\frac{1}{7}p$ = 0.035 m, the light one $\frac{6}{7}p$ = 0.21 m;
+#   the centre of mass stays
+# - option 3: the corner is pushed out partly by *turning* the light box about its centre of mass,
+#   which the lever arm $\mathbf{r}\times\hat{\mathbf{n}}$ makes cheap; the centre of mass stays
+
+
+# %%
+def pair_world(option: str) -> tuple[World, Body, Body]:
+    world = World(gravity=(0.0, 0.0), dt=DT, penetration=option)
+    heavy = world.add_body(Body(name="heavy"))
+    heavy.add_shape(Box(2.0, 1.0, density=HEAVY_DENSITY))
+    tilt = math.radians(LIGHT_TILT)
+    reach = 0.5 * (math.cos(tilt) + math.sin(tilt))  # centre to lowest corner of a tilted box
+    light = world.add_body(Body(name="light", position=(0.5, 0.5 + reach - OVERLAP), angle=tilt))
+    light.add_shape(Box(1.0, 1.0, density=1.0))
+    return world, heavy, light
+
+
+def pair_com(heavy: Body, light: Body) -> np.ndarray:
+    m = heavy.mass + light.mass
+    return (
+        heavy.mass * np.array(heavy.center_of_mass) + light.mass * np.array(light.center_of_mass)
+    ) / m
+
+
+pair, rows, pair_runs = {}, [], []
+for option in OPTIONS:
+    world, heavy, light = pair_world(option)
+    start = (
+        np.array(heavy.position),
+        np.array(light.position),
+        light.angle,
+        pair_com(heavy, light),
+    )
+    depth, angle = [max_depth(world)], [math.degrees(light.angle)]
+    rec = record(world, 0)
+    for _ in range(PAIR_STEPS):
+        world.step()
+        depth.append(max_depth(world))
+        angle.append(math.degrees(light.angle))
+        rec.capture(world)
+    pair_runs.append(rec)
+    depth = np.array(depth)
+    pair[option] = {"depth": depth, "angle": np.array(angle)}
+    settled = int(np.argmax(depth <= 1.01 * world.settings.slop))
+    rows.append((
+        LABELS[option], settled, depth[-1],
+        float(np.linalg.norm(np.array(heavy.position) - start[0])),
+        float(np.linalg.norm(np.array(light.position) - start[1])),
+        math.degrees(light.angle - start[2]), heavy.angle,
+        float(np.linalg.norm(pair_com(heavy, light) - start[3])),
+        float(np.abs(world.vel).max()),
+    ))  # fmt: skip
+print_table(
+    ["option", "steps to slop", "depth left (m)", "heavy moved (m)", "light moved (m)",
+     "light turned (deg)", "heavy angle (rad)", "pair COM moved (m)", "max |v| (m/s)"],
+    rows,
+)  # fmt: skip
+p_fix = OVERLAP - 0.005
+print(f"slides: option 1 moves each by {p_fix / 2:.4f} m; option 2 moves heavy by "
+      f"{p_fix / 7:.4f} m and light by {6 * p_fix / 7:.4f} m (p = {OVERLAP} m - slop)")  # fmt: skip
+
+
+# %%
+def draw(ax, rec, frame: int, color) -> None:
+    """The outlines of every body of a recording at one frame."""
+    shapes = OutlineArrays.of(rec)
+    polys = place(shapes.local, shapes.body, rec.frames[frame])
+    for poly in polys:
+        ax.fill(poly[:, 0], poly[:, 1], facecolor=color, alpha=0.25, edgecolor=color, lw=1.5)
+
+
+fig, axes = plt.subplots(1, 4, figsize=(14, 4.0), sharey=True)
+draw(axes[0], pair_runs[0], 0, "0.4")
+axes[0].set_title("start: corner 0.25 m deep")
+for ax, option, rec in zip(axes[1:], OPTIONS, pair_runs, strict=True):
+    draw(ax, pair_runs[0], 0, "0.85")
+    draw(ax, rec, -1, COLORS[option])
+    ax.set_title(f"option {LABELS[option]} (grey: start)")
+for ax in axes:
+    ax.set(aspect="equal", xlim=(-1.2, 1.4), ylim=(-0.7, 1.9))
+    ax.grid(alpha=0.3)
+fig.tight_layout()
+fig.savefig(OUT / "overlapping_boxes.png", dpi=100)
+plt.close(fig)
+
+# %% [markdown]
+# ## A box pushed corner-first into the ground
+#
+# Gravity on, a 1 m box tilted 30 degrees, starting with its corner 0.3 m below the ground's
+# surface (as if a large step had carried it there). The ground is static, so options 1 and 2
+# give the same result: they lift the box straight up by almost the whole 0.3 m in the first
+# step. That lift is potential energy from nowhere ($m g \Delta y$), and with its corner now
+# resting on the ground the box topples over fast. Option 3 pushes at the corner: a push there
+# both lifts the box and turns it towards lying flat, removing the overlap over a few steps
+# with less lifting.
+
+
+# %%
+def corner_world(option: str) -> tuple[World, Body]:
+    world = World(gravity=(0.0, -G), dt=DT, penetration=option)
+    ground = world.add_body(Body(name="ground", type="static"))
+    ground.add_shape(Box(8.0, 0.5, offset=(0.0, -0.25)))
+    tilt = math.radians(TILT)
+    reach = 0.5 * (math.cos(tilt) + math.sin(tilt))
+    box = world.add_body(Body(name="box", position=(0.0, reach - DIVE), angle=tilt))
+    box.add_shape(Box(1.0, 1.0))
+    return world, box
+
+
+corner, rows = {}, []
+steps = int(round(DURATION / DT))
+for option in OPTIONS:
+    world, box = corner_world(option)
+    e0 = world.energy()
+    series = {k: [v] for k, v in (("t", 0.0), ("depth", max_depth(world)), ("y", box.center_of_mass[1]),
+                                  ("angle", math.degrees(box.angle)), ("E", 0.0))}  # fmt: skip
+    w_max = 0.0
+    for _ in range(steps):
+        world.step()
+        series["t"].append(world.time)
+        series["depth"].append(max_depth(world))
+        series["y"].append(box.center_of_mass[1])
+        series["angle"].append(math.degrees(box.angle))
+        series["E"].append(world.energy() - e0)
+        w_max = max(w_max, abs(box.angular_velocity))
+    s = {k: np.array(v) for k, v in series.items()}
+    corner[option] = s
+    rows.append((LABELS[option], s["depth"][1], int(np.argmax(s["depth"] <= 0.01)),
+                 s["y"][1] - s["y"][0], float(s["E"].max()), w_max, box.position[0],
+                 box.position[1], math.degrees(box.angle)))  # fmt: skip
+print_table(
+    ["option", "depth after 1 step", "steps to < 1 cm", "COM lift in step 1", "max energy added (J)",
+     "max |omega| (rad/s)", "final x", "final y", "final angle (deg)"],
+    rows,
+)  # fmt: skip
+y_rest = 0.5  # m, centre of mass of the box lying flat on the ground
+lift = y_rest - corner["half"]["y"][0]
+print(
+    f"box mass {box.mass:.2f} kg: lifting it {DIVE} m costs m g h = {box.mass * G * DIVE:.3f} J; "
+    f"lying flat at the end needs m g ({y_rest} - y0) = {box.mass * G * lift:.3f} J whatever the "
+    "option: the rest of what a fix adds turns into toppling speed"
+)
+
+# %%
+fig, axes = plt.subplots(2, 2, figsize=(12, 7))
+k = np.arange(PAIR_STEPS + 1)
+for option in OPTIONS:
+    c = COLORS[option]
+    ls = "--" if option == "mass_weighted" else "-"  # drawn dashed where options 1 and 2 coincide
+    axes[0, 0].plot(k, pair[option]["depth"], color=c, ls=ls, marker=".", label=LABELS[option])
+    axes[0, 1].plot(k, pair[option]["angle"], color=c, ls=ls, marker=".", label=LABELS[option])
+    s = corner[option]
+    axes[1, 0].plot(s["t"], s["depth"], color=c, ls=ls, label=LABELS[option])
+    axes[1, 1].plot(s["t"], s["angle"], color=c, ls=ls, label=LABELS[option])
+axes[0, 0].set(xlabel="step", ylabel="deepest overlap (m)", title="two boxes: penetration depth")
+axes[0, 1].set(
+    xlabel="step", ylabel="light box angle (deg)", title="two boxes: only option 3 turns"
+)
+axes[1, 0].set(xlabel="t (s)", ylabel="deepest overlap (m)", title="box into the ground: depth",
+               xlim=(0.0, 0.4))  # fmt: skip
+axes[1, 1].set(xlabel="t (s)", ylabel="box angle (deg)", title="box into the ground: angle")
+for ax in axes.flat:
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+fig.tight_layout()
+fig.savefig(OUT / "penetration.png", dpi=100)
+plt.close(fig)
+
+# %%
+runs = []
+for option in OPTIONS:
+    world, _ = corner_world(option)
+    runs.append(record(world, steps, every=GIF_EVERY, series={"depth (m)": max_depth}))
+gif = render_gif(
+    runs, OUT / "corner_drop.gif", fps=15, size_px=360, labels=[LABELS[o] for o in OPTIONS],
+    colors=[COLORS[o] for o in OPTIONS], panel="depth (m)", view=(-1.2, 2.2, -0.6, 1.6),
+)  # fmt: skip
+print(f"wrote {len(runs[0])} frames to {gif.name}")
+
+# %% [markdown]
+# **Which handles rotation?** Only option 3. Options 1 and 2 translate along the normal: a
+# corner stuck in a surface is pushed out by moving the whole body, as if it could not turn, so
+# the fix lifts the centre of mass further than needed and adds potential energy (in the
+# animation options 1 and 2 coincide: their red and blue boxes overlap). Option 2 at
+# least respects the masses (and keeps the pair's centre of mass where it was, like a real
+# internal push would); option 1 moves a 6 kg box as far as a 1 kg one. Option 3 weighs each
+# way of moving (linear or angular, either body) by its inverse mass or inverse moment, exactly
+# as the collision equation does for velocities, so the push goes where it is cheapest. The
+# price: it works on a linearised contact and removes only a fraction $\beta$ per pass, so a
+# deep overlap takes a few steps.
