@@ -1,0 +1,439 @@
+"""This engine and pymunk side by side on one scene: traces, an overlaid animation, deviations.
+
+``compare(spec, steps, out_dir)`` runs a scene in this engine and in pymunk (same dt, gravity and
+solver iterations, built from the same scene dict by :mod:`sandbox.pymunk_bridge`), plus one more
+run of this engine per variant setting (``variants={"solver": ["pairwise"]}``), and writes into
+``out_dir``:
+
+- ``trace_sandbox.csv``, ``trace_pymunk.csv``, ``trace_<key>_<value>.csv`` per variant
+  (``step,t,body,x,y,angle,vx,vy,omega``, see :mod:`sandbox.trace`)
+- ``overlay.gif``: every run overlaid, one colour per engine or variant, with a legend
+- ``deviation.png``: |p_run - p_pymunk| (m, body origin) and |theta_run - theta_pymunk| (rad)
+  against time, one line per moving body
+- ``energy.png``: kinetic + potential energy (J) of every run against time
+- ``summary.txt``: the table printed at the end of the run
+
+Energy of a pymunk run is computed from its bodies the way :meth:`sandbox.world.World.energy`
+does: sum over dynamic bodies of m |v|^2 / 2 + I omega^2 / 2 - m g . c (c the centre of mass),
+plus k (d - L)^2 / 2 for every damped spring.
+
+Everything is simulated before anything is written: a scene pymunk cannot express raises
+:class:`~sandbox.pymunk_bridge.BridgeError` (a ValueError with ``.path``) and a bad variant raises
+ValueError, leaving ``out_dir`` untouched. Every file is written whole or not at all.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from sandbox.atomic import atomic_write, atomic_write_text
+from sandbox.settings import CHOICES
+
+__all__ = ["ComparisonResult", "Run", "compare", "pymunk_energy", "run_pymunk_scene", "run_sandbox"]
+
+VARIANT_KEYS = ("solver", "orientation", "integrator", "broadphase", "penetration", "iterations")
+GIF_MAX_FRAMES = 150  # longer runs skip steps between frames
+RUN_COLORS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C8", "C9")
+
+
+@dataclass
+class Run:
+    """One simulated run of the scene.
+
+    ``label`` names it ("sandbox", "pymunk", "sandbox solver=pairwise"); ``overrides`` the settings
+    changed from the scene's; ``times`` (T,) in s; ``poses`` (T, n, 3) ``[x, y, angle]`` of every
+    body's origin; ``velocities`` (T, n, 3) ``[vx, vy, omega]``; ``energy`` (T,) kinetic + potential
+    in J; ``rows`` the trace rows; ``slug`` the file-name part (``trace_<slug>.csv``).
+    """
+
+    label: str
+    slug: str
+    overrides: dict
+    times: np.ndarray
+    poses: np.ndarray
+    velocities: np.ndarray
+    energy: np.ndarray
+    rows: list = field(repr=False)
+
+    def track(self, body: int) -> np.ndarray:
+        """``(T, 3)`` poses ``[x, y, angle]`` of body index ``body`` over the run."""
+        return self.poses[:, body, :]
+
+
+@dataclass
+class ComparisonResult:
+    """What :func:`compare` computed and wrote.
+
+    ``runs``: this engine first, pymunk second, then the variants. ``names``: every body, scene
+    order; ``moving``: indices of the non-static bodies. ``position_deviation[label]`` (T, m) and
+    ``angle_deviation[label]`` (T, m): |run - pymunk| for each moving body (m, rad).
+    ``table``: the printed summary; ``files``: what was written; ``notes``: the bridge's notes.
+    """
+
+    scene: str
+    steps: int
+    dt: float
+    names: list[str]
+    moving: list[int]
+    runs: list[Run]
+    position_deviation: dict[str, np.ndarray]
+    angle_deviation: dict[str, np.ndarray]
+    table: str = ""
+    files: dict[str, Path] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+    def run(self, label: str) -> Run:
+        """The run called ``label`` (KeyError if none)."""
+        for r in self.runs:
+            if r.label == label:
+                return r
+        raise KeyError(f"no run labelled {label!r} (have {[r.label for r in self.runs]})")
+
+    def body_index(self, name: str) -> int:
+        """Index of the body called ``name`` in every run's arrays."""
+        return self.names.index(name)
+
+    def max_position_deviation(self, label: str = "sandbox") -> float:
+        """Largest |p_run - p_pymunk| over all moving bodies and steps (m)."""
+        dev = self.position_deviation[label]
+        return float(dev.max()) if dev.size else 0.0
+
+
+# ---------------------------------------------------------------- running the engines
+
+
+def pymunk_energy(scene) -> float:
+    """Kinetic + potential energy (J) of a :class:`~sandbox.pymunk_bridge.PymunkScene`.
+
+    sum over dynamic bodies of m |v|^2 / 2 + I omega^2 / 2 - m g . c, plus k (d - L)^2 / 2 per
+    damped spring: the same terms as :meth:`sandbox.world.World.energy`.
+    """
+    import pymunk
+
+    gx, gy = scene.space.gravity
+    energy = 0.0
+    for body in scene.bodies:
+        if body.body_type != pymunk.Body.DYNAMIC:
+            continue
+        m = body.mass
+        vx, vy = body.velocity
+        c = body.local_to_world(body.center_of_gravity)
+        energy += 0.5 * m * (vx * vx + vy * vy) - m * (gx * c.x + gy * c.y)
+        if math.isfinite(body.moment):
+            energy += 0.5 * body.moment * body.angular_velocity**2
+    for joint in scene.space.constraints:
+        if isinstance(joint, pymunk.DampedSpring):
+            pa = joint.a.local_to_world(joint.anchor_a)
+            pb = joint.b.local_to_world(joint.anchor_b)
+            stretch = (pb - pa).length - joint.rest_length
+            energy += 0.5 * joint.stiffness * stretch * stretch
+    return energy
+
+
+def _arrays(rows: Sequence[tuple], n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Trace rows -> times (T,), poses (T, n, 3), velocities (T, n, 3)."""
+    if n == 0:
+        steps = sorted({r[0] for r in rows})
+        return np.array(steps, dtype=float), np.zeros((len(steps), 0, 3)), np.zeros((0, 0, 3))
+    data = np.array([r[3:9] for r in rows], dtype=float).reshape(-1, n, 6)
+    times = np.array([rows[k * n][1] for k in range(len(data))], dtype=float)
+    return times, np.ascontiguousarray(data[..., :3]), np.ascontiguousarray(data[..., 3:])
+
+
+def run_sandbox(spec: dict, steps: int, label: str = "sandbox", overrides=None) -> Run:
+    """Run a validated scene dict in this engine for ``steps`` steps (energy recorded each step)."""
+    from sandbox.build import build_world
+    from sandbox.trace import run_world
+
+    world = build_world(spec)
+    energy = [world.energy()]
+    rows = list(run_world(world, steps, on_step=lambda w: energy.append(w.energy())))
+    times, poses, vels = _arrays(rows, len(world.bodies))
+    slug = "sandbox" if not overrides else "_".join(f"{k}_{v}" for k, v in overrides.items())
+    return Run(label, slug, dict(overrides or {}), times, poses, vels, np.array(energy), rows)
+
+
+def run_pymunk_scene(scene, steps: int) -> Run:
+    """Run a built :class:`~sandbox.pymunk_bridge.PymunkScene` for ``steps`` steps."""
+    rows: list[tuple] = []
+    energy = []
+    for n in range(int(steps) + 1):
+        if n > 0:
+            scene.step()
+        rows.extend((n, scene.time, *row) for row in scene.state())
+        energy.append(pymunk_energy(scene))
+    times, poses, vels = _arrays(rows, len(scene.bodies))
+    return Run("pymunk", "pymunk", {}, times, poses, vels, np.array(energy), rows)
+
+
+def _variant_specs(spec: dict, variants: Mapping[str, Sequence] | None) -> list[tuple[dict, dict]]:
+    """(overrides, scene dict) per requested variant; values equal to the scene's are skipped."""
+    from sandbox.scene import validate_scene
+
+    out: list[tuple[dict, dict]] = []
+    seen = set()
+    for key, values in (variants or {}).items():
+        if key not in VARIANT_KEYS:
+            raise ValueError(f"variants.{key}: expected one of {', '.join(VARIANT_KEYS)}")
+        for value in values or ():
+            if key in CHOICES and value not in CHOICES[key]:
+                raise ValueError(
+                    f"variants.{key}: expected one of {', '.join(CHOICES[key])}, got {value!r}"
+                )
+            if spec["settings"][key] == value or (key, value) in seen:
+                continue
+            seen.add((key, value))
+            changed = {**spec, "settings": {**spec["settings"], key: value}}
+            out.append(({key: value}, validate_scene(changed)))
+    return out
+
+
+# ---------------------------------------------------------------- deviations and the table
+
+
+def _deviations(run: Run, ref: Run, moving: list[int]) -> tuple[np.ndarray, np.ndarray]:
+    """|p_run - p_ref| (T, m) in m and |wrap(theta_run - theta_ref)| (T, m) in rad."""
+    d = run.poses[:, moving, :] - ref.poses[:, moving, :]
+    pos = np.hypot(d[..., 0], d[..., 1])
+    ang = np.abs(np.remainder(d[..., 2] + math.pi, 2.0 * math.pi) - math.pi)
+    return pos, ang
+
+
+def _table(result: ComparisonResult, spec: dict) -> str:
+    from sandbox.lessonkit import format_table
+
+    g = spec["gravity"]
+    head = (
+        f"compare {result.scene!r}: {result.steps} steps of dt = {result.dt:.6g} s, "
+        f"iterations {spec['settings']['iterations']}, gravity ({g[0]:g}, {g[1]:g})"
+    )
+    rows = []
+    for run in result.runs:
+        if run.label == "pymunk":
+            continue
+        pos, ang = result.position_deviation[run.label], result.angle_deviation[run.label]
+        for j, i in enumerate(result.moving):
+            rows.append(
+                [
+                    run.label,
+                    result.names[i],
+                    f"{pos[:, j].max():.3e}",
+                    f"{pos[-1, j]:.3e}",
+                    f"{ang[:, j].max():.3e}",
+                    f"{ang[-1, j]:.3e}",
+                ]
+            )
+    deviation = format_table(
+        ["run", "body", "max |dp| m", "final |dp| m", "max |dangle| rad", "final |dangle| rad"],
+        rows,
+    )
+    energy_rows = [
+        [r.label, f"{r.energy[0]:.6g}", f"{r.energy[-1]:.6g}", f"{r.energy[-1] - r.energy[0]:+.4g}"]
+        for r in result.runs
+    ]
+    energy = format_table(["run", "initial E (J)", "final E (J)", "change (J)"], energy_rows)
+    return (
+        f"{head}\n\ndeviation from pymunk (body origin and angle, moving bodies)\n{deviation}\n\n"
+        f"kinetic + potential energy\n{energy}\n"
+    )
+
+
+# ---------------------------------------------------------------- figures
+
+
+def _save_figure(fig, path: Path) -> None:
+    with atomic_write(path, "wb") as f:
+        fig.savefig(f, format="png", dpi=100)
+
+
+def _deviation_figure(result: ComparisonResult, path: Path) -> None:
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8, 6))
+    axes = fig.subplots(2, 1, sharex=True)
+    styles = ("-", "--", ":", "-.")
+    labels = [r.label for r in result.runs if r.label != "pymunk"]
+    for ax, data, what in (
+        (axes[0], result.position_deviation, "|p - p_pymunk| (m)"),
+        (axes[1], result.angle_deviation, "|angle - angle_pymunk| (rad)"),
+    ):
+        peak = max((float(data[lab].max()) for lab in labels if data[lab].size), default=0.0)
+        t = result.runs[0].times
+        for k, lab in enumerate(labels):
+            for j, i in enumerate(result.moving):
+                y = data[lab][:, j]
+                name = result.names[i] if len(labels) == 1 else f"{result.names[i]} ({lab})"
+                ax.plot(t, y, styles[k % 4], color=f"C{j % 10}", linewidth=1.0, label=name)
+        if peak > 0.0:  # log scale above 1e-9 of the peak, linear below (so 0 shows as 0)
+            ax.set_yscale("symlog", linthresh=max(peak * 1e-9, 1e-300))
+        ax.set_ylabel(what)
+        ax.grid(alpha=0.3)
+    if 0 < len(result.moving) * len(labels) <= 12:
+        axes[0].legend(fontsize=7)
+    axes[1].set_xlabel("t (s)")
+    axes[0].set_title(f"{result.scene}: deviation from pymunk, per body")
+    fig.tight_layout()
+    _save_figure(fig, path)
+
+
+def _energy_figure(result: ComparisonResult, path: Path) -> None:
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8, 4))
+    ax = fig.subplots()
+    for k, run in enumerate(result.runs):
+        ax.plot(run.times, run.energy, color=RUN_COLORS[k % len(RUN_COLORS)], label=run.label)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("kinetic + potential energy (J)")
+    ax.set_title(f"{result.scene}: energy")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    _save_figure(fig, path)
+
+
+def write_overlay_gif(
+    result: ComparisonResult,
+    spec: dict,
+    path: str | os.PathLike,
+    fps: float = 30.0,
+    size_px: int = 480,
+    max_frames: int = GIF_MAX_FRAMES,
+    panel: bool = False,
+    view: Sequence[float] | None = None,
+) -> Path:
+    """Every run of ``result`` overlaid in one GIF, one colour per run, with a legend.
+
+    One frame per ``1 / fps`` s of simulated time (fewer when that would exceed ``max_frames``);
+    ``panel`` adds the energy against time beside the scene; ``view`` ``(xmin, xmax, ymin, ymax)``
+    in metres (default: everything in every frame).
+    """
+    from sandbox.build import build_world
+    from sandbox.recording import Recording
+    from sandbox.render import render_gif
+
+    steps = len(result.runs[0].times) - 1
+    every = max(1, round(1.0 / (result.dt * fps)), math.ceil((steps + 1) / max_frames))
+    world = build_world(spec)
+    recordings = []
+    for run in result.runs:
+        rec = Recording.from_world(world)
+        for k in range(0, steps + 1, every):
+            rec.add_frame(run.poses[k], run.times[k], energy=run.energy[k])
+        recordings.append(rec)
+    gif_fps = min(50.0, max(1.0, 1.0 / (every * result.dt)))
+    return render_gif(
+        recordings,
+        path,
+        fps=gif_fps,
+        size_px=size_px,
+        labels=[r.label for r in result.runs],
+        colors=RUN_COLORS[: len(result.runs)],
+        panel="energy" if panel else None,
+        trail=len(result.moving) <= 12,  # each moving body's path so far
+        title=result.scene,
+        **({"view": tuple(view)} if view is not None else {}),
+    )
+
+
+# ---------------------------------------------------------------- the comparison
+
+
+def compare(
+    spec: dict,
+    steps: int,
+    out_dir: str | os.PathLike | None,
+    variants: Mapping[str, Sequence] | None = None,
+    gif: bool = True,
+    *,
+    fps: float = 30.0,
+    size_px: int = 480,
+    max_frames: int = GIF_MAX_FRAMES,
+    panel: bool = False,
+    view: Sequence[float] | None = None,
+    quiet: bool = False,
+) -> ComparisonResult:
+    """Run ``spec`` in this engine, in pymunk and per variant; write the outputs into ``out_dir``.
+
+    ``spec``: a scene dict (validated again here); ``steps``: number of steps of the scene's dt;
+    ``variants``: settings to overlay, e.g. ``{"solver": ["pairwise"], "integrator": ["rk4"]}``;
+    ``gif``: write ``overlay.gif`` (``fps`` frames per simulated second, at most ``max_frames``,
+    ``size_px`` high, ``panel`` adds the energy plot, ``view`` (xmin, xmax, ymin, ymax) in m).
+    ``out_dir=None`` computes without writing. The table is
+    printed unless ``quiet``. Raises BridgeError (scene not expressible in pymunk) or ValueError
+    (bad variant) before anything is written.
+    """
+    from sandbox.pymunk_bridge import PymunkScene
+    from sandbox.scene import validate_scene
+
+    spec = validate_scene(spec)
+    steps = int(steps)
+    if steps < 0:
+        raise ValueError(f"steps: must be >= 0, got {steps}")
+    scene = PymunkScene.from_scene(spec)  # BridgeError here, before anything runs or is written
+    extra = _variant_specs(spec, variants)
+
+    runs = [run_sandbox(spec, steps), run_pymunk_scene(scene, steps)]
+    for overrides, variant in extra:
+        label = "sandbox " + " ".join(f"{k}={v}" for k, v in overrides.items())
+        runs.append(run_sandbox(variant, steps, label, overrides))
+
+    names = [b["name"] for b in spec["bodies"]]
+    moving = [i for i, b in enumerate(spec["bodies"]) if b["type"] != "static"]
+    pymunk_run = runs[1]
+    pos_dev, ang_dev = {}, {}
+    for run in runs:
+        if run is not pymunk_run:
+            pos_dev[run.label], ang_dev[run.label] = _deviations(run, pymunk_run, moving)
+    result = ComparisonResult(
+        scene=spec["name"],
+        steps=steps,
+        dt=spec["dt"],
+        names=names,
+        moving=moving,
+        runs=runs,
+        position_deviation=pos_dev,
+        angle_deviation=ang_dev,
+        notes=list(scene.notes),
+    )
+    result.table = _table(result, spec)
+    if not quiet:
+        print(result.table, end="")
+    if out_dir is None:
+        return result
+
+    from sandbox.trace import write_trace
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    for run in runs:
+        path = out / f"trace_{run.slug}.csv"
+        write_trace(run.rows, path)
+        result.files[path.stem] = path
+    if gif:
+        result.files["overlay"] = write_overlay_gif(
+            result,
+            spec,
+            out / "overlay.gif",
+            fps=fps,
+            size_px=size_px,
+            max_frames=max_frames,
+            panel=panel,
+            view=view,
+        )
+    _deviation_figure(result, out / "deviation.png")
+    _energy_figure(result, out / "energy.png")
+    result.files["deviation"] = out / "deviation.png"
+    result.files["energy"] = out / "energy.png"
+    notes = "".join(f"- {note}\n" for note in result.notes)
+    atomic_write_text(out / "summary.txt", f"{result.table}\npymunk bridge notes\n{notes}")
+    result.files["summary"] = out / "summary.txt"
+    if not quiet:
+        print(f"wrote {len(result.files)} files to {out}")
+    return result
