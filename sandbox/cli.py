@@ -239,6 +239,9 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as err:  # a setting or value the world itself refused
         print(f"error: {err}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return 0
 
 
 if __name__ == "__main__":

@@ -18,8 +18,9 @@ Where pymunk and the contract differ, the bridge translates and says so in ``Pym
   do; see ``JOINED_BODIES_COLLIDE``). Pivot limits act on angle_b - angle_a, as pymunk's
   ``RotaryLimitJoint``.
 - Settings (orientation, integrator, broadphase, solver, penetration) have no pymunk counterpart;
-  only ``iterations`` is used. ``ccd`` is accepted and ignored. pymunk's collision slop and bias
-  keep their defaults (``collision_slop``, ``collision_bias``).
+  only ``iterations`` is used. ``ccd`` is accepted and ignored. pymunk's collision slop is set to
+  this engine's (0.005 m; pymunk's default of 0.1 m is sized for pixels, not metres); its bias
+  keeps its default (``collision_slop``, ``collision_bias``).
 - Buoyancy (pymunk has none) is computed here each step from the submerged area and centroid of
   every shape, with Box2D's buoyancy-controller formulas (see :func:`buoyancy_force`).
 """
@@ -34,6 +35,7 @@ import pymunk
 
 from sandbox.buoyancy import circle_submerged, clip_below, polygon_area_centroid
 from sandbox.geometry import polygon_problem
+from sandbox.settings import Settings
 
 DEFAULT_DT = 1.0 / 60.0
 DEFAULT_GRAVITY = (0.0, -9.81)
@@ -185,6 +187,7 @@ class PymunkScene:
 
     def __init__(self) -> None:
         self.space = pymunk.Space()
+        self.space.collision_slop = Settings().slop  # metres, as this engine allows
         self.dt = DEFAULT_DT
         self.time = 0.0
         self.bodies: list[pymunk.Body] = []
@@ -230,8 +233,8 @@ class PymunkScene:
                 "its own Euler step, bounding-box tree, sequential impulses)"
             )
         self.notes.append(
-            f"pymunk defaults kept: collision_slop={self.collision_slop}, "
-            f"collision_bias={self.collision_bias}"
+            f"collision_slop={self.collision_slop} m (this engine's slop), "
+            f"collision_bias={self.collision_bias} (pymunk's default)"
         )
 
     def _add_body(self, spec: Mapping[str, Any], path: str) -> None:
