@@ -271,7 +271,7 @@ plt.close(fig)
 # %%
 world = World(dt=DT)
 anchor = world.add_body(Body("anchor", type="static", position=(-6.0, 0.0)))
-anchor.add_shape(Circle(0.08))  # drawn; the rod to the bob is not
+anchor.add_shape(Circle(0.08))  # drawn as a disc; the rod is drawn as a line
 bob = world.add_body(Body("bob", position=(-6.0 + LENGTH * math.sin(1.047), -LENGTH * 0.5)))
 bob.add_shape(Circle(0.15))
 world.add_joint(PinJoint(anchor, bob))

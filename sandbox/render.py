@@ -2,13 +2,17 @@
 
 One or several runs of a scene are drawn overlaid, one colour per run (as Box2D's Solver2D
 testbed does), static bodies grey, each shape with an orientation marker (centre to rim for a
-circle, centre to the middle of the first edge for a polygon). An optional side panel plots
-recorded series (energy, momentum, ...) against time with a moving cursor.
+circle, centre to the middle of the first edge for a polygon). Joints are drawn in their run's
+colour, thinner: a pin as a line between its anchors, a spring as a zig-zag, a pivot as a dot;
+water (a recording's ``fluids``) as a translucent blue band below its surface. An optional side
+panel plots recorded series (energy, momentum, ...) against time with a moving cursor.
 
 Speed: the figure and its artists are built once; each frame only moves vertices. Every shape
 is a polygon (a circle is a ``circle_sides``-gon) padded to a common vertex count, so all
 shapes of a run are placed in one numpy expression and handed to one ``PolyCollection``; the
 static parts of the figure are drawn once and restored from a saved background (blitting).
+Likewise the pins and springs of a run are one ``LineCollection`` and its pivots one line of
+markers, and the water is part of the background.
 """
 
 from __future__ import annotations
@@ -28,7 +32,15 @@ from PIL import Image
 from tqdm import tqdm
 
 from sandbox.atomic import atomic_write
-from sandbox.recording import CircleOutline, OutlineArrays, Recording, bounds, place, record
+from sandbox.recording import (
+    CircleOutline,
+    OutlineArrays,
+    Recording,
+    bounds,
+    place,
+    record,
+    zigzag,
+)
 
 __all__ = [
     "CircleOutline",
@@ -44,6 +56,10 @@ DEFAULT_COLORS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C8", "C9")
 STATIC_FACE = (0.62, 0.62, 0.62, 0.7)
 STATIC_EDGE = (0.35, 0.35, 0.35, 1.0)
 FILL_ALPHA = 0.4
+WATER_FACE = (0.16, 0.45, 0.85, 0.25)
+WATER_EDGE = (0.16, 0.45, 0.85, 0.9)
+JOINT_WIDTH = 0.75  # joint lines, as a fraction of the outline width (never below one pixel)
+SPRING_HALF_WIDTH_PX = 4.0  # a spring's zig-zag peaks, pixels off its axis at 480 px
 _DPI = 100
 _PROGRESS_FRAMES = 50  # renders longer than this show a progress bar (on a terminal)
 
@@ -109,6 +125,8 @@ class FrameRenderer:
         self.n_frames = max(len(r) for r in self.runs)
         self.poses = [r.poses() for r in self.runs]
         self.shapes = [OutlineArrays.of(r, circle_sides) for r in self.runs]
+        self.joint_ends = [r.joint_segments() for r in self.runs]  # (F, J, 2, 2) per run
+        self.fluids = sorted({y for r in self.runs for y in r.fluids})
         colors = list(colors) if colors is not None else list(DEFAULT_COLORS)
         if len(colors) < len(self.runs):
             raise ValueError(f"{len(self.runs)} runs need as many colors, got {len(colors)}")
@@ -139,10 +157,16 @@ class FrameRenderer:
             ax.set_axis_off()
         ax.tick_params(labelsize=fontsize)
         if view is None:
-            found = [bounds(s, p) for s, p in zip(self.shapes, self.poses, strict=True)]
+            found = [
+                bounds(s, p, j)
+                for s, p, j in zip(self.shapes, self.poses, self.joint_ends, strict=True)
+            ]
             b = np.array([f for f in found if f is not None]).reshape(-1, 4)
             if len(b):
                 view = (b[:, 0].min(), b[:, 1].max(), b[:, 2].min(), b[:, 3].max())
+                if self.fluids:  # the water's surface is in view
+                    y = [view[2], view[3], *self.fluids]
+                    view = (view[0], view[1], min(y), max(y))
             else:
                 view = (-1.0, 1.0, -1.0, 1.0)  # nothing finite to show
         else:
@@ -154,8 +178,36 @@ class FrameRenderer:
             ax.set_title(title, fontsize=fontsize)
 
         lw = max(0.72, 1.0 * scale)  # points; never thinner than one pixel (0.72 pt at 100 dpi)
+        jlw = max(0.72, JOINT_WIDTH * lw)
+        self._draw_water(jlw)
+        metres_per_px = (self.view[3] - self.view[2]) / box_h
+        self.spring_half_width = SPRING_HALF_WIDTH_PX * scale * metres_per_px
         self.polys, self.markers, self.trails = [], [], []
-        for color, shapes in zip(self.colors, self.shapes, strict=True):
+        self.joint_lines, self.pivots = [], []
+        for color, shapes, run in zip(self.colors, self.shapes, self.runs, strict=True):
+            kinds = np.array([j.kind for j in run.joints], dtype=object)
+            lines = np.flatnonzero(kinds != "pivot")
+            springs = kinds[lines] == "spring"
+            line = None
+            if len(lines):
+                line = LineCollection([], colors=[color], linewidths=jlw, animated=True)
+                ax.add_collection(line)
+            self.joint_lines.append((lines, springs, line))
+            pivots = np.flatnonzero(kinds == "pivot")
+            dot = None
+            if len(pivots):
+                (dot,) = ax.plot(
+                    [],
+                    [],
+                    linestyle="none",
+                    marker="o",
+                    markersize=max(2.5, 4.0 * scale),
+                    markerfacecolor="white",
+                    markeredgecolor=color,
+                    markeredgewidth=jlw,
+                    animated=True,
+                )
+            self.pivots.append((pivots, dot))
             face = np.tile((*color[:3], FILL_ALPHA), (len(shapes.body), 1))
             edge = np.tile(color, (len(shapes.body), 1))
             face[shapes.static], edge[shapes.static] = STATIC_FACE, STATIC_EDGE
@@ -179,8 +231,11 @@ class FrameRenderer:
                 self.trails.append(line)
         self.movers = [np.array([t != "static" for t in r.types], dtype=bool) for r in self.runs]
         self.animated: list[Any] = [*self.trails]  # drawn over the saved background, in order
-        for poly, markers in zip(self.polys, self.markers, strict=True):
+        for i, (poly, markers) in enumerate(zip(self.polys, self.markers, strict=True)):
+            joints, pivots = self.joint_lines[i][2], self.pivots[i][1]
+            self.animated += [joints] if joints is not None else []  # strings under the bodies
             self.animated += [poly, *(line for _, line in markers)]
+            self.animated += [pivots] if pivots is not None else []  # hinges on top
         if labels is not None:
             handles = [
                 Patch(facecolor=(*c[:3], FILL_ALPHA), edgecolor=c, label=str(lab))
@@ -205,6 +260,17 @@ class FrameRenderer:
         self._build_panels(panels, size_px, width_px, scale, fontsize)
         self.canvas.draw()
         self.background = self.canvas.copy_from_bbox(self.fig.bbox)
+
+    def _draw_water(self, linewidth: float) -> None:
+        """Each fluid as a translucent band from below the view up to its surface (background)."""
+        ymin, ymax = self.view[2], self.view[3]
+        for surface in self.fluids:
+            if surface <= ymin:
+                continue
+            top = min(surface, ymax + (ymax - ymin))
+            self.ax.axhspan(ymin - (ymax - ymin), top, color=WATER_FACE, linewidth=0, zorder=0.5)
+            if surface < ymax:
+                self.ax.axhline(surface, color=WATER_EDGE, linewidth=linewidth, zorder=0.6)
 
     def _build_panels(
         self, panels: list[str], size_px: int, width_px: int, scale: float, fontsize: float
@@ -272,6 +338,19 @@ class FrameRenderer:
             for index, line in self.markers[i]:
                 xy = ends[index].reshape(-1, 2)
                 line.set_data(xy[:, 0], xy[:, 1])
+            lines, springs, joint_line = self.joint_lines[i]
+            if joint_line is not None:
+                seg = self.joint_ends[i][ks[i], lines]
+                paths = list(seg)
+                if springs.any():
+                    zig = zigzag(seg[springs], self.spring_half_width)
+                    for j, path in zip(np.flatnonzero(springs), zig, strict=True):
+                        paths[j] = path
+                joint_line.set_segments(paths)
+            pivots, dot = self.pivots[i]
+            if dot is not None:
+                at = self.joint_ends[i][ks[i], pivots].mean(axis=1)  # the two anchors, held
+                dot.set_data(at[:, 0], at[:, 1])
             if self.trail:
                 start = 0 if self.trail < 0 else max(0, ks[i] - self.trail + 1)
                 path = poses[start : ks[i] + 1][:, self.movers[i], :2]
@@ -291,6 +370,8 @@ class FrameRenderer:
     def palette_colors(self) -> np.ndarray:
         """RGB uint8 colours this renderer draws with (run fills and edges, greys, white)."""
         cols = [(1, 1, 1, 1), (0, 0, 0, 1), STATIC_EDGE, STATIC_FACE, (0.2, 0.2, 0.2, 1)]
+        if self.fluids:
+            cols += [WATER_FACE, WATER_EDGE]
         for c in self.colors:
             cols += [c, (*c[:3], FILL_ALPHA), (*c[:3], 0.6)]
         rgb = [np.array(c[:3]) * c[3] + (1.0 - c[3]) for c in cols]  # over a white background

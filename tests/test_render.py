@@ -1,15 +1,21 @@
-"""Recordings and headless rendering: files are whole images, shapes land on the right pixels."""
+"""Recordings and headless rendering: files are whole images, shapes land on the right pixels,
+joints and water are drawn where the bodies and the surface are."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgb
 from PIL import Image
 
-from sandbox import render
+from sandbox import Body as WorldBody
+from sandbox import Box, Circle, World, render
+from sandbox.forces import Buoyancy
 from sandbox.geometry import box_vertices
-from sandbox.recording import CircleOutline, Recording, record
+from sandbox.joints import PinJoint, PivotJoint, SpringJoint
+from sandbox.recording import CircleOutline, JointOutline, Recording, record, zigzag
 from sandbox.render import FILL_ALPHA, STATIC_FACE, render_gif, render_png
 
 VIEW = (-5.0, 5.0, -5.0, 5.0)  # 10 m square: at 100 px, 10 px per metre, no margin
@@ -203,3 +209,130 @@ def test_bad_arguments_are_rejected(tmp_path):
     with pytest.raises(ValueError):
         Recording(["a"], ["floating"], [[]])
     assert list(tmp_path.iterdir()) == []
+
+
+def pendulum_world() -> tuple[World, list]:
+    """A bob hung by a pin from an off-centre anchor; its shape is off its origin (com != origin)
+    and the pin holds it off its origin too, so the anchors test x = p + R(angle) q."""
+    world = World(dt=1 / 60)
+    beam = world.add_body(WorldBody("beam", type="static", position=(0.5, 3.0), angle=0.3))
+    beam.add_shape(Box(2.0, 0.2))
+    bob = world.add_body(WorldBody("bob", position=(2.0, 0.5), angle=0.4))
+    bob.add_shape(Circle(0.4, offset=(0.2, -0.1)))
+    link = world.add_body(WorldBody("link", position=(2.6, 0.0)))
+    link.add_shape(Box(0.6, 0.1))
+    joints = [
+        world.add_joint(PinJoint(beam, bob, (0.7, 0.05), (0.1, 0.3))),
+        world.add_joint(PivotJoint(bob, link, (0.3, -0.1), (-0.3, 0.0))),
+        world.add_joint(SpringJoint(beam, link, (-0.9, 0.0), (0.3, 0.0), stiffness=50.0)),
+    ]
+    return world, joints
+
+
+def test_recorded_joint_ends_are_the_world_anchors():
+    world, joints = pendulum_world()
+    rec = Recording.from_world(world)
+    expected = []
+    for _ in range(6):
+        rec.capture(world)
+        expected.append([joint.world_anchors(world) for joint in joints])
+        for _ in range(5):
+            world.step()
+    assert [j.kind for j in rec.joints] == ["pin", "pivot", "spring"]
+    assert [(j.a, j.b) for j in rec.joints] == [(0, 1), (1, 2), (0, 2)]
+    ends = rec.joint_segments()
+    assert ends.shape == (6, 3, 2, 2)
+    # the engine's anchors (com + R (q - local_com)) and the recording's (p + R q): 1e-12 m
+    np.testing.assert_allclose(ends, np.array(expected), rtol=0, atol=1e-12)
+    assert np.abs(ends[-1] - ends[0]).max() > 0.1  # the bodies did swing
+    # a frame added from poses alone places the anchors the same way (replays, pymunk runs)
+    again = Recording.from_world(world)
+    again.add_frame(rec.frames[-1], rec.times[-1])
+    np.testing.assert_array_equal(again.joint_frames[0], ends[-1])
+
+
+def hanging_pendulum(frames: int = 2) -> Recording:
+    """A shapeless static anchor at (X, 4) and a ball of radius 1 at (X, -2) on a pin: a vertical
+    rod through the middle of pixel column 50 (at 100 px of VIEW)."""
+    x = 0.05
+    rec = Recording(
+        names=["anchor", "bob"],
+        types=["static", "dynamic"],
+        outlines=[[], [CircleOutline(np.zeros(2), 1.0)]],
+        joints=[JointOutline("pin", 0, 1, np.zeros(2), np.zeros(2))],
+    )
+    for k in range(frames):
+        rec.add_frame([[x, 4.0, 0.0], [x, -2.0, 0.0]], k / 30)
+    return rec
+
+
+def test_pin_is_drawn_as_a_line_in_the_run_colour(tmp_path):
+    rec = hanging_pendulum()
+    np.testing.assert_array_equal(rec.joint_frames[1], [[[0.05, 4.0], [0.05, -2.0]]])
+    path = render_png(rec, tmp_path / "pin.png", size_px=100, view=VIEW)
+    with Image.open(path) as im:
+        rgb = np.asarray(im.convert("RGB"), dtype=float)
+    row, col = pixel(0.05, 1.0)  # midway between the anchor (y = 4) and the bob (y = -2)
+    near = rgb[row, col - 1 : col + 2]
+    darkest = near[near.sum(axis=1).argmin()]
+    # a vertical 1 px line snapped onto one pixel column: the run colour, 8 of 255 for rounding
+    np.testing.assert_allclose(darkest, 255 * np.array(to_rgb("C0")), atol=8)
+    np.testing.assert_array_equal(rgb[pixel(1.05, 1.0)], [255, 255, 255])  # 1 m off the rod
+
+
+def test_pivot_dot_and_spring_zigzag(tmp_path):
+    rec = Recording(
+        names=["left", "right"],
+        types=["static", "dynamic"],
+        outlines=[[], []],
+        joints=[
+            JointOutline("spring", 0, 1, np.zeros(2), np.zeros(2)),
+            JointOutline("pivot", 0, 1, np.zeros(2), np.array([-4.0, 0.0])),
+        ],
+    )
+    rec.add_frame([[-3.0, Y, 0.0], [1.0, Y, 0.0]], 0.0)
+    rgb = next(render.render_frames(rec, size_px=100, view=VIEW))
+    # the pivot's anchors meet at (-3, Y): a dot with a white middle and a run-coloured rim
+    row, col = pixel(-3.0, Y)
+    ring = rgb[row - 3 : row + 4, col - 3 : col + 4].reshape(-1, 3).astype(float)
+    assert np.abs(ring - 255 * np.array(to_rgb("C0"))).sum(axis=1).min() < 60  # hand-set bound
+    # the spring's zig-zag: its ends are the anchors, its peaks half_width off the axis
+    zig = zigzag(rec.joint_frames[0][:1], 0.25)[0]
+    np.testing.assert_array_equal(zig[[0, -1]], [[-3.0, Y], [1.0, Y]])
+    np.testing.assert_allclose(np.abs(zig[:, 1] - Y).max(), 0.25, rtol=1e-12)
+    assert np.isfinite(zigzag(np.zeros((1, 2, 2)), 0.25)).all()  # length 0: a point, no NaN
+    # the middle of the spring (x = -1) is drawn: some pixel of that column is dark
+    col = pixel(-1.0, Y)[1]
+    assert rgb[row - 4 : row + 5, col].sum(axis=1).min() < 3 * 255 - 150
+
+
+def test_buoyancy_world_draws_water_below_its_surface(tmp_path):
+    world = World(dt=1 / 60)
+    box = world.add_body(WorldBody("box", position=(2.0, 0.2)))
+    box.add_shape(Box(1.0, 1.0))
+    world.add_force(Buoyancy(surface_y=-0.5, fluid_density=2.0))
+    rec = Recording.from_world(world)
+    assert rec.fluids == [-0.5] and rec.joints == []
+    path = render_png(world, tmp_path / "water.png", size_px=100, view=VIEW)
+    with Image.open(path) as im:
+        rgb = np.asarray(im.convert("RGB"), dtype=float)
+    water, air = rgb[pixel(-3.0, -2.0)], rgb[pixel(-3.0, 2.0)]
+    assert water[2] > water[0] + 40  # bluish: hand-measured blue - red = 44 at alpha 0.25
+    np.testing.assert_array_equal(air, [255, 255, 255])
+    # default view: the surface is in it even when every body is above the water
+    rec.capture(world)
+    rec.fluids = [-3.0]  # the box spans y in [-0.3, 0.7]
+    with render.FrameRenderer(rec, size_px=64) as renderer:
+        assert renderer.view[2] < -3.0 < renderer.view[3]
+
+
+def test_recordings_without_joints_still_render_and_joints_are_checked(tmp_path):
+    rec = moving_ball(frames=3)
+    assert rec.joints == [] and rec.joint_segments().shape == (3, 0, 2, 2)
+    assert render_png(rec, tmp_path / "plain.png", size_px=64).exists()
+    with pytest.raises(ValueError):
+        hanging_pendulum().add_frame([[0, 4, 0], [0, -2, 0]], 1.0, joints=np.zeros((2, 2, 2)))
+    with pytest.raises(ValueError):
+        Recording(["a"], ["dynamic"], [[]], joints=[JointOutline("pin", 0, 1, (0, 0), (0, 0))])
+    with pytest.raises(ValueError):
+        Recording(["a"], ["dynamic"], [[]], fluids=[math.inf])
