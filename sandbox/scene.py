@@ -8,19 +8,41 @@ Units: SI, radians, y up, counter-clockwise positive.
 
 from __future__ import annotations
 
-import difflib
 import json
-import math
-import numbers
 import os
 from typing import TYPE_CHECKING, Any
 
 from sandbox.atomic import atomic_write_text
 from sandbox.geometry import polygon_problem
+from sandbox.scene_fields import (
+    SceneError,
+    _boolean,
+    _choice,
+    _get,
+    _integer,
+    _is_number,
+    _key,
+    _kind,
+    _list,
+    _name,
+    _number,
+    _object,
+    _show,
+    _vector,
+)
 from sandbox.settings import CHOICES
 
 if TYPE_CHECKING:
     from sandbox.world import World
+
+__all__ = [
+    "SceneError",
+    "dump_scene",
+    "load_scene",
+    "read_scene_file",
+    "save_scene",
+    "validate_scene",
+]
 
 VERSION = 1
 DEFAULT_NAME = "scene"
@@ -39,7 +61,6 @@ BODY_TYPES = ("dynamic", "static", "kinematic")
 SHAPE_TYPES = ("circle", "polygon", "box")
 JOINT_TYPES = ("pin", "pivot", "spring")
 FORCE_TYPES = ("drag", "buoyancy", "constant")
-IGNORED_KEYS = ("description", "comment")  # and every key starting with "_"
 
 _TOP_KEYS = ("version", "name", "gravity", "dt", "settings", "bodies", "joints", "forces")
 _BODY_KEYS = (
@@ -63,23 +84,6 @@ _FORCE_KEYS = {
     "buoyancy": ("type", "surface_y", "fluid_density", "linear_drag", "angular_drag", "bodies"),
     "constant": ("type", "force", "torque", "point", "bodies"),
 }
-_REQUIRED = object()
-
-
-class SceneError(ValueError):
-    """A scene that breaks the contract. ``path`` names the field (``""``: the whole document,
-    ``"file"``: the file itself); ``message`` says what was expected and what was found."""
-
-    def __init__(self, path: str, message: str):
-        super().__init__(f"{path}: {message}")
-        self.path = path
-        self.message = message
-
-    def __str__(self) -> str:
-        return f"{self.path}: {self.message}"
-
-    def __reduce__(self):
-        return (type(self), (self.path, self.message))
 
 
 # --- reading -------------------------------------------------------------------------------------
@@ -128,145 +132,6 @@ def _refuse_constants(value: Any, path: str) -> None:
     elif isinstance(value, list):
         for i, item in enumerate(value):
             _refuse_constants(item, f"{path}[{i}]")
-
-
-# --- checking one value --------------------------------------------------------------------------
-def _key(path: str, key: object) -> str:
-    return f"{path}.{key}" if path else str(key)
-
-
-def _show(value: Any) -> str:
-    """A short, one-line description of a found value."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if value is None:
-        return "null"
-    if isinstance(value, str):
-        text = value if len(value) <= 40 else value[:37] + "..."
-        return repr(text)
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "NaN"
-        if math.isinf(value):
-            return "Infinity" if value > 0 else "-Infinity"
-        return repr(value)
-    if isinstance(value, int):
-        text = str(value)
-        return text if len(text) <= 20 else "an integer too large"
-    if isinstance(value, list | tuple):
-        return f"a list of {len(value)} item{'s' if len(value) != 1 else ''}" if value else "[]"
-    if isinstance(value, dict):
-        return "an object"
-    return f"a {type(value).__name__}"
-
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
-
-
-def _bound(x: float) -> str:
-    return str(int(x)) if float(x).is_integer() else repr(x)
-
-
-def _number(value: Any, path: str, *, gt: float | None = None, ge: float | None = None,
-            le: float | None = None) -> float:  # fmt: skip
-    """A finite int or float (never a bool) within the given bounds, as a float."""
-    if gt is not None:
-        expected = f"a number > {_bound(gt)}"
-    elif ge is not None and le is not None:
-        expected = f"a number in [{_bound(ge)}, {_bound(le)}]"
-    elif ge is not None:
-        expected = f"a number >= {_bound(ge)}"
-    else:
-        expected = "a number"
-    if not _is_number(value):
-        raise SceneError(path, f"expected {expected}, got {_show(value)}")
-    try:
-        x = float(value)
-    except OverflowError:
-        raise SceneError(path, f"expected a finite number, got {_show(value)}") from None
-    if not math.isfinite(x):
-        raise SceneError(path, f"expected a finite number, got {_show(value)}")
-    if (
-        (gt is not None and not x > gt)
-        or (ge is not None and not x >= ge)
-        or (le is not None and not x <= le)
-    ):
-        raise SceneError(path, f"expected {expected}, got {_show(value)}")
-    return x
-
-
-def _integer(value: Any, path: str, lo: int, hi: int) -> int:
-    if not (isinstance(value, numbers.Integral) and _is_number(value)) or not lo <= value <= hi:
-        raise SceneError(path, f"expected an integer in [{lo}, {hi}], got {_show(value)}")
-    return int(value)
-
-
-def _vector(value: Any, path: str) -> list[float]:
-    """``[x, y]``: a list of exactly two finite numbers."""
-    if not isinstance(value, list | tuple) or len(value) != 2:
-        raise SceneError(path, f"expected [x, y] (a list of 2 numbers), got {_show(value)}")
-    return [_number(value[0], f"{path}[0]"), _number(value[1], f"{path}[1]")]
-
-
-def _boolean(value: Any, path: str) -> bool:
-    if not isinstance(value, bool):
-        raise SceneError(path, f"expected true or false, got {_show(value)}")
-    return value
-
-
-def _name(value: Any, path: str) -> str:
-    if not isinstance(value, str) or not value.strip():
-        raise SceneError(path, f"expected a non-empty string, got {_show(value)}")
-    return value
-
-
-def _choice(value: Any, path: str, options: tuple[str, ...]) -> str:
-    if not isinstance(value, str) or value not in options:
-        hint = ""
-        if isinstance(value, str):
-            close = difflib.get_close_matches(value, options, n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-        raise SceneError(path, f"expected one of {', '.join(options)}, got {_show(value)}{hint}")
-    return value
-
-
-def _object(value: Any, path: str, what: str, keys: tuple[str, ...]) -> dict:
-    """A JSON object whose keys are all known (or ignored: ``_...``, description, comment)."""
-    if not isinstance(value, dict):
-        raise SceneError(path, f"expected {what} (a JSON object), got {_show(value)}")
-    for key in value:
-        if isinstance(key, str) and (key.startswith("_") or key in IGNORED_KEYS):
-            continue
-        if key not in keys:
-            close = difflib.get_close_matches(str(key), keys, n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            shown = key if isinstance(key, str) and key.isprintable() else repr(key)
-            raise SceneError(_key(path, shown), f"unknown field{hint}")
-    return value
-
-
-def _list(value: Any, path: str, what: str) -> list:
-    if not isinstance(value, list | tuple):
-        raise SceneError(path, f"expected a list of {what}, got {_show(value)}")
-    return list(value)
-
-
-def _get(obj: dict, path: str, key: str, check, default: Any = _REQUIRED, *, nullable=False, **kw):
-    """Check ``obj[key]`` with ``check``; a missing key takes ``default`` (or is an error)."""
-    where = _key(path, key)
-    if key not in obj:
-        if default is _REQUIRED:
-            raise SceneError(where, "required field is missing")
-        return list(default) if isinstance(default, tuple) else default
-    value = obj[key]
-    if value is None and nullable:
-        return None
-    return check(value, where, **kw)
-
-
-def _kind(obj: dict, path: str, options: tuple[str, ...]) -> str:
-    return _get(obj, path, "type", _choice, options=options)
 
 
 # --- checking the document -----------------------------------------------------------------------
