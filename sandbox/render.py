@@ -1,18 +1,9 @@
-"""Headless rendering of recordings to PNG and GIF (matplotlib's Agg canvas, Pillow encoder).
+"""Headless rendering of recordings to PNG and GIF files.
 
-One or several runs of a scene are drawn overlaid, one colour per run (as Box2D's Solver2D
-testbed does), static bodies grey, each shape with an orientation marker (centre to rim for a
-circle, centre to the middle of the first edge for a polygon). Joints are drawn in their run's
-colour, thinner: a pin as a line between its anchors, a spring as a zig-zag, a pivot as a dot;
-water (a recording's ``fluids``) as a translucent blue band below its surface. An optional side
-panel plots recorded series (energy, momentum, ...) against time with a moving cursor.
-
-Speed: the figure and its artists are built once; each frame only moves vertices. Every shape
-is a polygon (a circle is a ``circle_sides``-gon) padded to a common vertex count, so all
-shapes of a run are placed in one numpy expression and handed to one ``PolyCollection``; the
-static parts of the figure are drawn once and restored from a saved background (blitting).
-Likewise the pins and springs of a run are one ``LineCollection`` and its pivots one line of
-markers, and the water is part of the background.
+Frames are drawn by :class:`sandbox.frames.FrameRenderer` (matplotlib's Agg canvas, one collection
+per run updated per frame); this module writes them: a PNG of one frame, or a looping GIF whose
+frames all share one palette built once (Pillow, no dithering). Files are written whole or not
+at all.
 """
 
 from __future__ import annotations
@@ -23,26 +14,28 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.collections import LineCollection, PolyCollection
-from matplotlib.colors import to_rgba
-from matplotlib.figure import Figure
-from matplotlib.patches import Patch
 from PIL import Image
 from tqdm import tqdm
 
 from sandbox.atomic import atomic_write
+from sandbox.frames import (
+    DEFAULT_COLORS,
+    FILL_ALPHA,
+    PROGRESS_FRAMES,
+    STATIC_FACE,
+    FrameRenderer,
+    as_runs,
+)
 from sandbox.recording import (
     CircleOutline,
-    OutlineArrays,
     Recording,
-    bounds,
-    place,
     record,
-    zigzag,
 )
 
 __all__ = [
+    "DEFAULT_COLORS",
+    "FILL_ALPHA",
+    "STATIC_FACE",
     "CircleOutline",
     "FrameRenderer",
     "Recording",
@@ -51,340 +44,6 @@ __all__ = [
     "render_gif",
     "render_png",
 ]
-
-DEFAULT_COLORS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C8", "C9")
-STATIC_FACE = (0.62, 0.62, 0.62, 0.7)
-STATIC_EDGE = (0.35, 0.35, 0.35, 1.0)
-FILL_ALPHA = 0.4
-WATER_FACE = (0.16, 0.45, 0.85, 0.25)
-WATER_EDGE = (0.16, 0.45, 0.85, 0.9)
-JOINT_WIDTH = 0.75  # joint lines, as a fraction of the outline width (never below one pixel)
-SPRING_HALF_WIDTH_PX = 4.0  # a spring's zig-zag peaks, pixels off its axis at 480 px
-_DPI = 100
-_PROGRESS_FRAMES = 50  # renders longer than this show a progress bar (on a terminal)
-
-
-def _fit_view(view: Sequence[float], aspect: float, margin: float) -> tuple[float, ...]:
-    """Grow ``view`` by ``margin`` (fraction of its size), then to width/height = ``aspect``."""
-    xmin, xmax, ymin, ymax = (float(v) for v in view)
-    size = max(xmax - xmin, ymax - ymin)
-    pad = margin * size if size > 0 else 1.0
-    xmin, xmax, ymin, ymax = xmin - pad, xmax + pad, ymin - pad, ymax + pad
-    w, h = xmax - xmin, ymax - ymin
-    cx, cy = 0.5 * (xmin + xmax), 0.5 * (ymin + ymax)
-    if w / h < aspect:
-        w = h * aspect
-    else:
-        h = w / aspect
-    return cx - 0.5 * w, cx + 0.5 * w, cy - 0.5 * h, cy + 0.5 * h
-
-
-def _as_runs(runs: Recording | Sequence[Recording]) -> list[Recording]:
-    if isinstance(runs, Recording):
-        return [runs]
-    runs = list(runs)
-    if not runs or not all(isinstance(r, Recording) for r in runs):
-        raise TypeError("runs must be a Recording or a non-empty list of Recordings")
-    return runs
-
-
-class FrameRenderer:
-    """A figure built once for ``runs``; :meth:`frame` returns the RGB pixels of frame ``k``.
-
-    ``runs``: a Recording or a list of them (same scene, same duration), overlaid in
-    ``colors`` (default matplotlib's cycle) with a legend of ``labels``. ``panel``: a series
-    name or list of names plotted beside the scene against time. ``trail``: True draws each
-    moving body's origin path so far, an int only its last ``trail`` frames. ``view``:
-    ``(xmin, xmax, ymin, ymax)`` in metres (default: every shape in every frame), grown by
-    ``margin`` and to equal aspect. ``axes``: draw ticks in metres. Image height is ``size_px``;
-    width is ``size_px`` plus ``panel_width * size_px`` with a panel.
-    """
-
-    def __init__(
-        self,
-        runs: Recording | Sequence[Recording],
-        size_px: int = 480,
-        labels: Sequence[str] | None = None,
-        colors: Sequence[Any] | None = None,
-        panel: str | Sequence[str] | None = None,
-        trail: bool | int = False,
-        view: Sequence[float] | None = None,
-        margin: float = 0.05,
-        axes: bool = False,
-        show_time: bool = True,
-        title: str | None = None,
-        circle_sides: int = 20,
-        panel_width: float = 1.0,
-    ) -> None:
-        self.runs = _as_runs(runs)
-        for r in self.runs:
-            if len(r) == 0:
-                raise ValueError("a recording to render needs at least one frame")
-        if size_px < 16:
-            raise ValueError(f"size_px must be at least 16, got {size_px}")
-        self.n_frames = max(len(r) for r in self.runs)
-        self.poses = [r.poses() for r in self.runs]
-        self.shapes = [OutlineArrays.of(r, circle_sides) for r in self.runs]
-        self.joint_ends = [r.joint_segments() for r in self.runs]  # (F, J, 2, 2) per run
-        self.fluids = sorted({y for r in self.runs for y in r.fluids})
-        colors = list(colors) if colors is not None else list(DEFAULT_COLORS)
-        if len(colors) < len(self.runs):
-            raise ValueError(f"{len(self.runs)} runs need as many colors, got {len(colors)}")
-        self.colors = [to_rgba(c) for c in colors[: len(self.runs)]]
-        if labels is None and len(self.runs) > 1:
-            labels = [f"run {i + 1}" for i in range(len(self.runs))]
-        if labels is not None and len(labels) != len(self.runs):
-            raise ValueError(f"{len(self.runs)} runs need as many labels, got {len(labels)}")
-        panels = [panel] if isinstance(panel, str) else list(panel or [])
-        for name in panels:
-            for i, r in enumerate(self.runs):
-                if name not in r.series:
-                    raise KeyError(f"run {i} has no series {name!r} (has {sorted(r.series)})")
-        self.trail = int(trail) if not isinstance(trail, bool) else (-1 if trail else 0)
-
-        scale = size_px / 480.0
-        width_px = size_px + (int(round(panel_width * size_px)) if panels else 0)
-        self.fig = Figure(figsize=(width_px / _DPI, size_px / _DPI), dpi=_DPI)
-        self.canvas = FigureCanvasAgg(self.fig)
-        fontsize = max(5.0, 9.0 * scale)
-        em = fontsize * _DPI / 72.0  # font size in pixels
-        pad = 3.2 * em if axes else 0.0  # room for tick labels
-        top = 0.3 * pad + (1.8 * em if title else 0.0)
-        box_w, box_h = size_px - 1.3 * pad, size_px - pad - top
-        ax = self.fig.add_axes((pad / width_px, pad / size_px, box_w / width_px, box_h / size_px))
-        self.ax = ax
-        if not axes:
-            ax.set_axis_off()
-        ax.tick_params(labelsize=fontsize)
-        if view is None:
-            found = [
-                bounds(s, p, j)
-                for s, p, j in zip(self.shapes, self.poses, self.joint_ends, strict=True)
-            ]
-            b = np.array([f for f in found if f is not None]).reshape(-1, 4)
-            if len(b):
-                view = (b[:, 0].min(), b[:, 1].max(), b[:, 2].min(), b[:, 3].max())
-                if self.fluids:  # the water's surface is in view
-                    y = [view[2], view[3], *self.fluids]
-                    view = (view[0], view[1], min(y), max(y))
-            else:
-                view = (-1.0, 1.0, -1.0, 1.0)  # nothing finite to show
-        else:
-            margin = 0.0
-        self.view = _fit_view(view, box_w / box_h, margin)
-        ax.set_xlim(self.view[0], self.view[1])
-        ax.set_ylim(self.view[2], self.view[3])
-        if title:
-            ax.set_title(title, fontsize=fontsize)
-
-        lw = max(0.72, 1.0 * scale)  # points; never thinner than one pixel (0.72 pt at 100 dpi)
-        jlw = max(0.72, JOINT_WIDTH * lw)
-        self._draw_water(jlw)
-        metres_per_px = (self.view[3] - self.view[2]) / box_h
-        self.spring_half_width = SPRING_HALF_WIDTH_PX * scale * metres_per_px
-        self.polys, self.markers, self.trails = [], [], []
-        self.joint_lines, self.pivots = [], []
-        for color, shapes, run in zip(self.colors, self.shapes, self.runs, strict=True):
-            kinds = np.array([j.kind for j in run.joints], dtype=object)
-            lines = np.flatnonzero(kinds != "pivot")
-            springs = kinds[lines] == "spring"
-            line = None
-            if len(lines):
-                line = LineCollection([], colors=[color], linewidths=jlw, animated=True)
-                ax.add_collection(line)
-            self.joint_lines.append((lines, springs, line))
-            pivots = np.flatnonzero(kinds == "pivot")
-            dot = None
-            if len(pivots):
-                (dot,) = ax.plot(
-                    [],
-                    [],
-                    linestyle="none",
-                    marker="o",
-                    markersize=max(2.5, 4.0 * scale),
-                    markerfacecolor="white",
-                    markeredgecolor=color,
-                    markeredgewidth=jlw,
-                    animated=True,
-                )
-            self.pivots.append((pivots, dot))
-            face = np.tile((*color[:3], FILL_ALPHA), (len(shapes.body), 1))
-            edge = np.tile(color, (len(shapes.body), 1))
-            face[shapes.static], edge[shapes.static] = STATIC_FACE, STATIC_EDGE
-            poly = PolyCollection(
-                [], facecolors=face, edgecolors=edge, linewidths=lw, animated=True
-            )
-            ax.add_collection(poly)
-            self.polys.append(poly)
-            # markers: one polyline broken by NaNs per colour (moving bodies, static bodies)
-            markers = []
-            for mask, c in ((~shapes.static, color), (shapes.static, STATIC_EDGE)):
-                if mask.any():
-                    (line,) = ax.plot([], [], color=c, linewidth=lw, animated=True)
-                    markers.append((np.flatnonzero(mask), line))
-            self.markers.append(markers)
-            if self.trail:
-                line = LineCollection(
-                    [], colors=[(*color[:3], 0.6)], linewidths=0.8 * lw, animated=True
-                )
-                ax.add_collection(line)
-                self.trails.append(line)
-        self.movers = [np.array([t != "static" for t in r.types], dtype=bool) for r in self.runs]
-        self.animated: list[Any] = [*self.trails]  # drawn over the saved background, in order
-        for i, (poly, markers) in enumerate(zip(self.polys, self.markers, strict=True)):
-            joints, pivots = self.joint_lines[i][2], self.pivots[i][1]
-            self.animated += [joints] if joints is not None else []  # strings under the bodies
-            self.animated += [poly, *(line for _, line in markers)]
-            self.animated += [pivots] if pivots is not None else []  # hinges on top
-        if labels is not None:
-            handles = [
-                Patch(facecolor=(*c[:3], FILL_ALPHA), edgecolor=c, label=str(lab))
-                for c, lab in zip(self.colors, labels, strict=True)
-            ]
-            legend = ax.legend(handles=handles, loc="upper right", fontsize=fontsize)
-            legend.set_animated(True)
-            self.animated.append(legend)
-        self.time_text = None
-        if show_time:
-            self.time_text = ax.text(
-                0.02,
-                0.98,
-                "",
-                transform=ax.transAxes,
-                ha="left",
-                va="top",
-                fontsize=fontsize,
-                animated=True,
-            )
-            self.animated.append(self.time_text)
-        self._build_panels(panels, size_px, width_px, scale, fontsize)
-        self.canvas.draw()
-        self.background = self.canvas.copy_from_bbox(self.fig.bbox)
-
-    def _draw_water(self, linewidth: float) -> None:
-        """Each fluid as a translucent band from below the view up to its surface (background)."""
-        ymin, ymax = self.view[2], self.view[3]
-        for surface in self.fluids:
-            if surface <= ymin:
-                continue
-            top = min(surface, ymax + (ymax - ymin))
-            self.ax.axhspan(ymin - (ymax - ymin), top, color=WATER_FACE, linewidth=0, zorder=0.5)
-            if surface < ymax:
-                self.ax.axhline(surface, color=WATER_EDGE, linewidth=linewidth, zorder=0.6)
-
-    def _build_panels(
-        self, panels: list[str], size_px: int, width_px: int, scale: float, fontsize: float
-    ) -> None:
-        self.cursors, self.dots = [], []
-        if not panels:
-            return
-        em = fontsize * _DPI / 72.0  # font size in pixels: margins leave room for tick labels
-        left, right, bottom, top, gap = 5.8 * em, 1.0 * em, 3.8 * em, 1.0 * em, 1.4 * em
-        h = (size_px - bottom - top - gap * (len(panels) - 1)) / len(panels)
-        t_all = np.concatenate([np.asarray(r.times, dtype=float) for r in self.runs])
-        t0, t1 = float(t_all.min()), float(t_all.max())
-        for j, name in enumerate(panels):
-            y = bottom + (len(panels) - 1 - j) * (h + gap)
-            ax = self.fig.add_axes(
-                (
-                    (size_px + left) / width_px,
-                    y / size_px,
-                    (width_px - size_px - left - right) / width_px,
-                    h / size_px,
-                )
-            )
-            for r, c in zip(self.runs, self.colors, strict=True):
-                ax.plot(r.times, r.series[name], color=c, linewidth=1.2 * scale)
-            ax.relim()
-            ax.autoscale_view()
-            ax.set_autoscale_on(False)  # the cursor and dots must not move the limits
-            ax.set_xlim(t0, t1 if t1 > t0 else t0 + 1.0)
-            ax.set_ylabel(name, fontsize=fontsize)
-            ax.tick_params(labelsize=fontsize)
-            ax.grid(alpha=0.3)
-            if j == len(panels) - 1:
-                ax.set_xlabel("t (s)", fontsize=fontsize)
-            else:
-                ax.tick_params(labelbottom=False)
-            cursor = ax.axvline(t0, color="0.2", linewidth=0.8 * scale, animated=True)
-            dots = ax.scatter(
-                np.zeros(len(self.runs)),
-                np.zeros(len(self.runs)),
-                c=self.colors,
-                s=18 * scale**2,
-                zorder=3,
-                animated=True,
-            )
-            self.cursors.append((name, cursor))
-            self.dots.append(dots)
-            self.animated += [cursor, dots]
-
-    @property
-    def size(self) -> tuple[int, int]:
-        """Image (width, height) in pixels."""
-        w, h = self.canvas.get_width_height()
-        return int(w), int(h)
-
-    def frame(self, k: int) -> np.ndarray:
-        """RGB pixels ``(height, width, 3)`` uint8 of frame ``k`` (negative counts from the end)."""
-        if not -self.n_frames <= k < self.n_frames:
-            raise IndexError(f"frame {k} out of range for {self.n_frames} frames")
-        k %= self.n_frames
-        ks = [min(k, len(r) - 1) for r in self.runs]
-        for i, (shapes, poses) in enumerate(zip(self.shapes, self.poses, strict=True)):
-            pose = poses[ks[i]]
-            self.polys[i].set_verts(place(shapes.local, shapes.body, pose))
-            ends = place(shapes.marker, shapes.body, pose)
-            for index, line in self.markers[i]:
-                xy = ends[index].reshape(-1, 2)
-                line.set_data(xy[:, 0], xy[:, 1])
-            lines, springs, joint_line = self.joint_lines[i]
-            if joint_line is not None:
-                seg = self.joint_ends[i][ks[i], lines]
-                paths = list(seg)
-                if springs.any():
-                    zig = zigzag(seg[springs], self.spring_half_width)
-                    for j, path in zip(np.flatnonzero(springs), zig, strict=True):
-                        paths[j] = path
-                joint_line.set_segments(paths)
-            pivots, dot = self.pivots[i]
-            if dot is not None:
-                at = self.joint_ends[i][ks[i], pivots].mean(axis=1)  # the two anchors, held
-                dot.set_data(at[:, 0], at[:, 1])
-            if self.trail:
-                start = 0 if self.trail < 0 else max(0, ks[i] - self.trail + 1)
-                path = poses[start : ks[i] + 1][:, self.movers[i], :2]
-                self.trails[i].set_segments(path.transpose(1, 0, 2))
-        times = [r.times[kr] for r, kr in zip(self.runs, ks, strict=True)]
-        if self.time_text is not None:
-            self.time_text.set_text(f"t = {times[0]:.2f} s")
-        for (name, cursor), dots in zip(self.cursors, self.dots, strict=True):
-            cursor.set_xdata([times[0], times[0]])
-            values = [r.series[name][kr] for r, kr in zip(self.runs, ks, strict=True)]
-            dots.set_offsets(np.column_stack([times, values]))
-        self.canvas.restore_region(self.background)
-        for artist in self.animated:
-            artist.axes.draw_artist(artist)
-        return np.asarray(self.canvas.buffer_rgba())[..., :3].copy()
-
-    def palette_colors(self) -> np.ndarray:
-        """RGB uint8 colours this renderer draws with (run fills and edges, greys, white)."""
-        cols = [(1, 1, 1, 1), (0, 0, 0, 1), STATIC_EDGE, STATIC_FACE, (0.2, 0.2, 0.2, 1)]
-        if self.fluids:
-            cols += [WATER_FACE, WATER_EDGE]
-        for c in self.colors:
-            cols += [c, (*c[:3], FILL_ALPHA), (*c[:3], 0.6)]
-        rgb = [np.array(c[:3]) * c[3] + (1.0 - c[3]) for c in cols]  # over a white background
-        return np.clip(np.round(np.array(rgb) * 255), 0, 255).astype(np.uint8)
-
-    def close(self) -> None:
-        self.fig.clear()
-
-    def __enter__(self) -> FrameRenderer:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
 
 
 def render_frames(
@@ -399,7 +58,7 @@ def render_frames(
     """
     with FrameRenderer(runs, **options) as renderer:
         ks = range(renderer.n_frames) if frames is None else list(frames)
-        show = progress and len(ks) > _PROGRESS_FRAMES and sys.stderr.isatty()
+        show = progress and len(ks) > PROGRESS_FRAMES and sys.stderr.isatty()
         for k in tqdm(ks, unit="frame", leave=False, disable=not show):
             yield renderer.frame(k)
 
@@ -409,7 +68,7 @@ def _source_runs(source: Any) -> Recording | list[Recording]:
     if isinstance(source, Recording):
         return source
     if isinstance(source, (list, tuple)):
-        return _as_runs(source)
+        return as_runs(source)
     if hasattr(source, "bodies"):
         rec = Recording.from_world(source)
         rec.capture(source)
@@ -461,7 +120,7 @@ def render_gif(
     )
     with renderer:
         ks = range(0, renderer.n_frames, stride)
-        show = len(ks) > _PROGRESS_FRAMES and sys.stderr.isatty()
+        show = len(ks) > PROGRESS_FRAMES and sys.stderr.isatty()
         bar = tqdm(total=len(ks), desc=path.name, unit="frame", leave=False, disable=not show)
         first = renderer.frame(0)
         palette = _palette(first, renderer.palette_colors())
