@@ -5,14 +5,30 @@ step's answer instead of zero (box2d-lite's ``Arbiter::Update``) lets a few iter
 it. A point of this step matches a point of the last step when the shapes (a, b) and the
 narrowphase's feature id are the same; unmatched points start from zero.
 
-The cache lives in ``world._solver_cache["contacts"]`` and is dropped when the world's shapes
-change (shape indices would mean something else).
+The cache is the last solved set of contact rows in the world's
+:class:`~sandbox.contact.ContactBuffers` (``world._solver_cache["buffers"]``), which is made
+anew when the world's shapes change (shape indices would mean something else). Its manifolds
+are in pair order, sorted by (shape a, shape b), as are this step's, so one forward walk
+through both finds every match (a merge, O(k)).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from sandbox.contact import (
+    I_COUNT,
+    I_FEATURE,
+    I_SA,
+    I_SB,
+    INT_COLS,
+    PN,
+    PT,
+    S_POINT,
+    S_STRIDE,
+    SOLVER_COLS,
+    buffers,
+)
 from sandbox.jit import njit
 
 
@@ -22,61 +38,87 @@ def pair_keys(sa: np.ndarray, sb: np.ndarray, m: int) -> np.ndarray:
 
 
 @njit
-def copy_matched(match, count, feature, old_count, old_feature, old, new) -> int:
-    """For manifold i matched to old manifold match[i] (-1: none), copy the per-point values
-    ``old[:, q, jj]`` of the points with equal feature ids into ``new[:, i, j]`` (zero
-    elsewhere). Returns the number of points matched."""
+def _before(sa0, sb0, sa, sb) -> bool:
+    """The shape pair (sa0, sb0) comes before (sa, sb)."""
+    return sa0 < sa or (sa0 == sa and sb0 < sb)
+
+
+@njit
+def match_rows(ints, solver, k, old_ints, old_solver, k_old) -> int:
+    """Fill the impulses ``PN``, ``PT`` of this step's rows (``ints``, ``solver``, ``k``
+    manifolds) with those of the last step's points (``old_*``, ``k_old``, sorted by shape
+    pair) that have the same shapes and feature id; zero where none. Returns the number of
+    points matched."""
     found = 0
-    for i in range(len(match)):
-        for f in range(new.shape[0]):
-            new[f, i, 0] = new[f, i, 1] = 0.0
-        q = match[i]
-        if q < 0:
+    q = 0  # walks forward through the old rows
+    for i in range(k):
+        for j in range(2):
+            solver[i, S_POINT + S_STRIDE * j + PN] = 0.0
+            solver[i, S_POINT + S_STRIDE * j + PT] = 0.0
+        sa, sb = ints[i, I_SA], ints[i, I_SB]
+        if q > 0 and not _before(old_ints[q - 1, I_SA], old_ints[q - 1, I_SB], sa, sb):
+            lo, hi = 0, q  # not in pair order (hand-made manifolds): binary search
+            while lo < hi:
+                mid = (lo + hi) // 2
+                if _before(old_ints[mid, I_SA], old_ints[mid, I_SB], sa, sb):
+                    lo = mid + 1
+                else:
+                    hi = mid
+            q = lo
+        while q < k_old and _before(old_ints[q, I_SA], old_ints[q, I_SB], sa, sb):
+            q += 1
+        if q == k_old or old_ints[q, I_SA] != sa or old_ints[q, I_SB] != sb:
             continue
-        for j in range(count[i]):
-            for jj in range(old_count[q]):
-                if old_feature[q, jj] == feature[i, j]:
-                    for f in range(new.shape[0]):
-                        new[f, i, j] = old[f, q, jj]
+        for j in range(ints[i, I_COUNT]):
+            for jj in range(old_ints[q, I_COUNT]):
+                if old_ints[q, I_FEATURE + jj] == ints[i, I_FEATURE + j]:
+                    p, pp = S_POINT + S_STRIDE * j, S_POINT + S_STRIDE * jj
+                    solver[i, p + PN] = old_solver[q, pp + PN]
+                    solver[i, p + PT] = old_solver[q, pp + PT]
                     found += 1
                     break
     return found
 
 
+def _rows_of(manifolds) -> tuple[np.ndarray, np.ndarray]:
+    """The ints and the impulse columns of the solver rows of ``manifolds``, sorted by shape
+    pair (as the step's rows are)."""
+    m = manifolds
+    order = np.lexsort((m.sb, m.sa))
+    ints = np.zeros((len(m), INT_COLS), dtype=np.int64)
+    ints[:, I_SA], ints[:, I_SB], ints[:, I_COUNT] = m.sa[order], m.sb[order], m.count[order]
+    ints[:, I_FEATURE : I_FEATURE + 2] = m.feature[order]
+    solver = np.zeros((len(m), SOLVER_COLS))
+    for j in range(2):
+        solver[:, S_POINT + S_STRIDE * j + PN] = m.normal_impulse[order, j]
+        solver[:, S_POINT + S_STRIDE * j + PT] = m.tangent_impulse[order, j]
+    return ints, solver, order
+
+
 def load(world, manifolds) -> int:
     """Fill ``manifolds.normal_impulse`` / ``tangent_impulse`` with last step's impulses of the
     matching points (zero elsewhere). Returns the number of points matched."""
-    m = manifolds
-    out = np.zeros((2, len(m), 2))
-    old = world._solver_cache.get("contacts")
-    geometry = world.geometry()
-    found = 0
-    if old is not None and old["geometry"] is geometry and len(m) and len(old["keys"]):
-        keys = pair_keys(m.sa, m.sb, len(geometry))
-        order = old["order"]
-        sorted_keys = old["keys"][order]
-        pos = np.minimum(np.searchsorted(sorted_keys, keys), len(sorted_keys) - 1)
-        match = np.where(sorted_keys[pos] == keys, order[pos], -1).astype(np.int64)
-        found = copy_matched(
-            match, m.count, m.feature, old["count"], old["feature"], old["values"], out
-        )
-    m.normal_impulse[:] = out[0]
-    m.tangent_impulse[:] = out[1]
+    cache = buffers(world)
+    ints, solver, order = _rows_of(manifolds)
+    old_ints, _, old_solver = cache.rows(cache.now)
+    found = match_rows(ints, solver, len(ints), old_ints, old_solver, cache.k[cache.now])
+    for j in range(2):
+        manifolds.normal_impulse[order, j] = solver[:, S_POINT + S_STRIDE * j + PN]
+        manifolds.tangent_impulse[order, j] = solver[:, S_POINT + S_STRIDE * j + PT]
     return int(found)
 
 
 def save(world, manifolds) -> None:
-    """Remember this step's impulses for the next step's warm start."""
+    """Remember these impulses for the next step's warm start (as a solve does)."""
+    cache = buffers(world)
     if manifolds is None or len(manifolds) == 0:
-        world._solver_cache.pop("contacts", None)
+        cache.forget()
         return
-    m = manifolds
-    keys = pair_keys(m.sa, m.sb, len(world.geometry()))
-    world._solver_cache["contacts"] = {
-        "geometry": world.geometry(),
-        "keys": keys,
-        "order": np.argsort(keys, kind="stable"),
-        "count": m.count.copy(),
-        "feature": m.feature.copy(),
-        "values": np.stack([m.normal_impulse, m.tangent_impulse]),
-    }
+    ints, solver, _ = _rows_of(manifolds)
+    k = len(ints)
+    cache.reserve(k)
+    s = cache.begin()
+    cache.ints[s][:k] = ints
+    cache.solver[s][:k] = solver
+    cache.geoms[s][:k] = 0.0
+    cache.commit(s, k)

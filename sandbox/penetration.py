@@ -29,6 +29,25 @@ import math
 import numpy as np
 
 from sandbox import orientation
+from sandbox.contact import (
+    DEPTH,
+    G_NX,
+    G_NY,
+    G_POINT,
+    G_REBOUND,
+    G_STRIDE,
+    I_A,
+    I_B,
+    I_COUNT,
+    LAX,
+    LAY,
+    LBX,
+    LBY,
+    S_II1,
+    S_II2,
+    S_IM1,
+    S_IM2,
+)
 from sandbox.jit import njit
 from sandbox.solvers.impulse import cross, effective_mass
 
@@ -145,6 +164,122 @@ def rebound(a, b, normal, distance, com, inv_mass) -> None:
         com[ia, 1] += w1 * normal[i, 1]
         com[ib, 0] -= w2 * normal[i, 0]
         com[ib, 1] -= w2 * normal[i, 1]
+
+
+# --- option 3 and the rebound on contact rows (what the world's step runs) ---------------------
+
+
+@njit
+def turn_small(c, s, d):
+    """(c, s) turned by about d radians, for the small turns within the position passes: by
+    atan(d), ((c, s) + d (-s, c)) / sqrt(1 + d^2), which is d to within d^3 / 3, without a
+    cosine and a sine. The passes add up the exact d of every turn, and the orientation is
+    turned by that total afterwards, so the step's result keeps no error."""
+    scale = 1.0 / math.sqrt(1.0 + d * d)
+    return (c - s * d) * scale, (s + c * d) * scale
+
+
+@njit
+def position_rows(ints, geoms, solver, k, com, cs, dphi, beta, slop, max_correction, passes):
+    """:func:`position_impulses` for contact rows (``sandbox.contact``), visiting the manifolds
+    in the velocity sweeps' order (``sandbox.solvers.iterative.visit``). Returns the smallest
+    separation seen in the last pass (m)."""
+    worst = 0.0
+    half = (k + 1) // 2
+    for _ in range(passes):
+        worst = 0.0
+        moved = False
+        for q in range(k):
+            i = (q >> 1) + (q & 1) * half
+            ia, ib = ints[i, I_A], ints[i, I_B]
+            nx, ny = geoms[i, G_NX], geoms[i, G_NY]
+            for j in range(ints[i, I_COUNT]):
+                g = G_POINT + G_STRIDE * j
+                c1, s1, c2, s2 = cs[ia, 0], cs[ia, 1], cs[ib, 0], cs[ib, 1]
+                lax, lay = geoms[i, g + LAX], geoms[i, g + LAY]
+                lbx, lby = geoms[i, g + LBX], geoms[i, g + LBY]
+                r1x, r1y = c1 * lax - s1 * lay, s1 * lax + c1 * lay
+                r2x, r2y = c2 * lbx - s2 * lby, s2 * lbx + c2 * lby
+                dx = (com[ib, 0] + r2x) - (com[ia, 0] + r1x)
+                dy = (com[ib, 1] + r2y) - (com[ia, 1] + r1y)
+                sep = -geoms[i, g + DEPTH] + dx * nx + dy * ny
+                worst = min(worst, sep)
+                c = min(max(beta * (sep + slop), -max_correction), 0.0)
+                if c == 0.0:
+                    continue  # within the slop: nothing to push
+                im1, ii1 = solver[i, S_IM1], solver[i, S_II1]
+                im2, ii2 = solver[i, S_IM2], solver[i, S_II2]
+                rn1, rn2 = cross(r1x, r1y, nx, ny), cross(r2x, r2y, nx, ny)
+                kn = im1 + im2 + ii1 * rn1 * rn1 + ii2 * rn2 * rn2
+                if kn <= 0.0:
+                    continue
+                lam = -c / kn  # slides, "Collision Equation" step 1, on positions
+                moved = True
+                com[ia, 0] -= im1 * lam * nx
+                com[ia, 1] -= im1 * lam * ny
+                com[ib, 0] += im2 * lam * nx
+                com[ib, 1] += im2 * lam * ny
+                d1, d2 = -ii1 * rn1 * lam, ii2 * rn2 * lam
+                if d1 != 0.0:
+                    dphi[ia] += d1
+                    cs[ia, 0], cs[ia, 1] = turn_small(c1, s1, d1)
+                if d2 != 0.0:
+                    dphi[ib] += d2
+                    cs[ib, 0], cs[ib, 1] = turn_small(c2, s2, d2)
+        if not moved:
+            break  # nothing moved: another pass would see the very same separations
+    return worst
+
+
+@njit
+def rebound_rows(ints, geoms, k, com, inv_mass) -> None:
+    """:func:`rebound` for contact rows (distance in ``G_REBOUND``)."""
+    for i in range(k):
+        d = geoms[i, G_REBOUND]
+        ia, ib = ints[i, I_A], ints[i, I_B]
+        im1, im2 = inv_mass[ia], inv_mass[ib]
+        if d <= 0.0 or im1 + im2 == 0.0:
+            continue
+        w1, w2 = im1 / (im1 + im2) * d, im2 / (im1 + im2) * d
+        com[ia, 0] += w1 * geoms[i, G_NX]
+        com[ia, 1] += w1 * geoms[i, G_NY]
+        com[ib, 0] -= w2 * geoms[i, G_NX]
+        com[ib, 1] -= w2 * geoms[i, G_NY]
+
+
+@njit
+def position_phase(
+    ints, geoms, solver, k, com, rot, cs, dphi, inv_mass, orientation_kind, renormalise,
+    beta, slop, passes,
+) -> float:  # fmt: skip
+    """The position phase on contact rows without joints, option 3: the rebound, ``passes``
+    passes of :func:`position_rows`, then the orientations turned by what the passes turned
+    (``dphi`` is scratch, one per body). Returns the smallest separation left (m)."""
+    rebound_rows(ints, geoms, k, com, inv_mass)
+    if k == 0 or passes <= 0:
+        return 0.0
+    dphi[:] = 0.0
+    worst = position_rows(ints, geoms, solver, k, com, cs, dphi, beta, slop, MAX_CORRECTION, passes)
+    orientation.integrate_rotations(orientation_kind, rot, dphi, renormalise)
+    orientation.cos_sin(orientation_kind, rot, cs)
+    return worst
+
+
+def constraints_of_rows(cache, s: int, k: int):
+    """The position data of set ``s`` of contact rows as a
+    :class:`~sandbox.solvers.impulse.Constraints` (``la``, ``lb``, ``sep0``, ``rebound``), for
+    the options and the joint loop that work on those."""
+    from sandbox.solvers.impulse import Constraints
+
+    geoms = cache.geoms[s][:k]
+    cons = Constraints(k)
+    for j in range(2):
+        g = G_POINT + G_STRIDE * j
+        cons.la[:, j] = geoms[:, [g + LAX, g + LAY]]
+        cons.lb[:, j] = geoms[:, [g + LBX, g + LBY]]
+        cons.sep0[:, j] = -geoms[:, g + DEPTH]
+    cons.rebound[:] = geoms[:, G_REBOUND]
+    return cons
 
 
 def correct(world, manifolds, cons, passes: int) -> float:

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox import integrators, orientation
+from sandbox import collision, integrators, orientation
 from sandbox.body import DYNAMIC, KINEMATIC, STATIC, TYPES, Body
 from sandbox.geometry_arrays import Geometry, build_geometry
 from sandbox.settings import Settings
@@ -229,7 +229,7 @@ class World:
         integrator = self.settings.integrator
         if integrator == "analytic":
             self._step_analytic(dt)
-        elif integrator in _EULERS and not self._has_ccd and not self._force_generators():
+        elif integrator in _EULERS and not self._has_ccd and not self._has_force_generators():
             self._step_euler(dt, explicit=integrator == "explicit_euler")
         else:
             self._step_numeric(dt)
@@ -239,6 +239,10 @@ class World:
     def _force_generators(self) -> list:
         """Force generators, and joints that act as forces (springs: ``accumulate``)."""
         return [*self.forces, *(j for j in self.joints if hasattr(j, "accumulate"))]
+
+    def _has_force_generators(self) -> bool:
+        """Whether :meth:`_force_generators` has any (without building the list each step)."""
+        return bool(self.forces) or any(hasattr(j, "accumulate") for j in self.joints)
 
     def _check_masses(self) -> None:
         massless = (self.kind == DYNAMIC) & (self.mass <= 0)
@@ -252,9 +256,11 @@ class World:
         self._has_constant = bool(self.const_force.any() or self.const_torque.any())
 
     def _step_euler(self, dt: float, explicit: bool) -> None:
-        """Fast path: both Euler methods as two compiled passes around the solver."""
-        from sandbox import collision
-
+        """Fast path: both Euler methods as two compiled passes around the solver (the whole
+        step in one compiled call when the settings allow, ``collision.step_euler``)."""
+        if collision.compiled(self):
+            collision.step_euler(self, dt, explicit)
+            return
         g = self.gravity
         args = (self.force, self.torque, self.inv_mass, self.inv_moment, g[0], g[1], dt)
         integrators.euler_velocities(self.kind, self.vel, self.omega, *args)
@@ -271,8 +277,6 @@ class World:
 
     def _step_numeric(self, dt: float) -> None:
         """Any integrator: free-motion increments, impulses in between (docs/architecture.md)."""
-        from sandbox import collision
-
         s = self.settings
         moving = self.kind != STATIC
         dyn = self.kind == DYNAMIC

@@ -14,6 +14,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from sandbox.geometry_arrays import (
+    P_X,
+    P_Y,
+    S_BODY,
+    S_CX,
+    S_CY,
+    S_KIND,
+    S_RADIUS,
+    S_VCOUNT,
+    S_VSTART,
+)
 from sandbox.jit import njit
 
 
@@ -70,6 +81,43 @@ def shape_aabbs(
             out[k, 2] = x1 + grow
             out[k, 3] = y1 + grow
     return out
+
+
+@njit
+def shape_aabbs_into(shape_int, shape_float, poly, com, cs, margin, out) -> None:
+    """:func:`shape_aabbs` on the packed shape arrays (``sandbox.geometry_arrays``), written
+    into ``out`` (m, 4) (the world's step reuses one array)."""
+    for k in range(shape_int.shape[0]):
+        b = shape_int[k, S_BODY]
+        c, s = cs[b, 0], cs[b, 1]
+        px, py = com[b, 0], com[b, 1]
+        grow = shape_float[k, S_RADIUS] + margin
+        if shape_int[k, S_KIND] == 0:
+            qx, qy = shape_float[k, S_CX], shape_float[k, S_CY]
+            x = px + c * qx - s * qy
+            y = py + s * qx + c * qy
+            out[k, 0] = x - grow
+            out[k, 1] = y - grow
+            out[k, 2] = x + grow
+            out[k, 3] = y + grow
+        else:
+            x0 = np.inf
+            y0 = np.inf
+            x1 = -np.inf
+            y1 = -np.inf
+            v0 = shape_int[k, S_VSTART]
+            for v in range(v0, v0 + shape_int[k, S_VCOUNT]):
+                qx, qy = poly[v, P_X], poly[v, P_Y]
+                x = px + c * qx - s * qy
+                y = py + s * qx + c * qy
+                x0 = min(x0, x)
+                y0 = min(y0, y)
+                x1 = max(x1, x)
+                y1 = max(y1, y)
+            out[k, 0] = x0 - grow
+            out[k, 1] = y0 - grow
+            out[k, 2] = x1 + grow
+            out[k, 3] = y1 + grow
 
 
 def swept_aabbs(aabb0: np.ndarray, aabb1: np.ndarray) -> np.ndarray:
@@ -137,25 +185,32 @@ def collect(kernel, m: int, record: bool, *args):
 
 @njit
 def sort_pairs(buf: np.ndarray, k: int, m: int) -> np.ndarray:
-    """Rows ``buf[:k]`` (each ``i < j``) sorted lexicographically, as a new ``(k, 2)`` array.
+    """Rows ``buf[:k]`` (each ``i < j``) sorted lexicographically, as a new ``(k, 2)`` array."""
+    out = np.empty((k, 2), dtype=np.int64)
+    sort_pairs_into(buf, k, m, np.empty(m + 1, dtype=np.int64), out)
+    return out
+
+
+@njit
+def sort_pairs_into(buf: np.ndarray, k: int, m: int, count: np.ndarray, out: np.ndarray) -> None:
+    """Rows ``buf[:k]`` (each ``i < j``) sorted lexicographically into ``out[:k]``; ``count``
+    (m + 1) is scratch.
 
     Counting sort on the first index (O(m + k)), then each run of equal first index sorted by
     the second (insertion sort for the usual short runs).
     """
-    count = np.zeros(m + 1, dtype=np.int64)
+    count[:] = 0
     for r in range(k):
         count[buf[r, 0] + 1] += 1
     for i in range(m):
         count[i + 1] += count[i]
-    out = np.empty((k, 2), dtype=np.int64)
-    fill = count[:m].copy()
-    for r in range(k):
+    for r in range(k):  # count[i] runs ahead as run i fills, ending where run i + 1 starts
         i = buf[r, 0]
-        out[fill[i], 0] = i
-        out[fill[i], 1] = buf[r, 1]
-        fill[i] += 1
+        out[count[i], 0] = i
+        out[count[i], 1] = buf[r, 1]
+        count[i] += 1
     for i in range(m):
-        lo, hi = count[i], count[i + 1]
+        lo, hi = (count[i - 1] if i > 0 else 0), count[i]
         if hi - lo > 32:
             out[lo:hi, 1] = np.sort(out[lo:hi, 1])
         else:
@@ -166,4 +221,3 @@ def sort_pairs(buf: np.ndarray, k: int, m: int) -> np.ndarray:
                     out[b + 1, 1] = out[b, 1]
                     b -= 1
                 out[b + 1, 1] = v
-    return out

@@ -23,28 +23,67 @@ import math
 
 import numpy as np
 
+from sandbox.contact import (
+    DEPTH,
+    G_FRICTION,
+    G_NX,
+    G_NY,
+    G_POINT,
+    G_RESTITUTION,
+    G_STRIDE,
+    GEOM_COLS,
+    I_A,
+    I_B,
+    I_COUNT,
+    I_FEATURE,
+    I_SA,
+    I_SB,
+    INT_COLS,
+    X,
+    Y,
+)
+from sandbox.geometry_arrays import (
+    P_NX,
+    P_NY,
+    P_X,
+    P_Y,
+    S_BODY,
+    S_BOUND,
+    S_CX,
+    S_CY,
+    S_FRICTION,
+    S_KIND,
+    S_RADIUS,
+    S_RESTITUTION,
+    S_VCOUNT,
+    S_VSTART,
+)
 from sandbox.jit import njit
 from sandbox.narrowphase.circles import TINY, circle_circle, polygon_circle
 from sandbox.narrowphase.polygons import polygon_polygon
 
 CIRCLE, POLYGON = 0, 1
 
-__all__ = ["CIRCLE", "POLYGON", "collide", "collide_arrays"]
+__all__ = ["CIRCLE", "POLYGON", "collide", "collide_arrays", "collide_packed", "collide_rows"]
 
 
 @njit
-def _place_polygon(verts, normals, v0, count, c, s, px, py, wv, wn):
-    """World frame of a polygon's vertices (p + R(c, s) q) and normals (R(c, s) n) into wv, wn.
-
-    (Only a few arrays are passed on purpose: every array argument of a compiled call costs a
-    reference count update, which here would cost more than the arithmetic.)"""
-    for v in range(count):
-        qx, qy = verts[v0 + v, 0], verts[v0 + v, 1]
-        wv[v, 0] = px + c * qx - s * qy
-        wv[v, 1] = py + s * qx + c * qy
-        qx, qy = normals[v0 + v, 0], normals[v0 + v, 1]
-        wn[v, 0] = c * qx - s * qy
-        wn[v, 1] = s * qx + c * qy
+def place_polygons(shape_int, poly, com, cs, wp) -> None:
+    """World frame of every polygon's vertices (p + R(c, s) q) and edge normals (R(c, s) n),
+    into the rows of ``wp`` (V, 4) that ``poly`` uses: once per shape, not once per pair."""
+    for k in range(shape_int.shape[0]):
+        if shape_int[k, S_KIND] != POLYGON:
+            continue
+        b = shape_int[k, S_BODY]
+        c, s, px, py = cs[b, 0], cs[b, 1], com[b, 0], com[b, 1]
+        v0 = shape_int[k, S_VSTART]
+        for v in range(v0, v0 + shape_int[k, S_VCOUNT]):
+            qx, qy = poly[v, P_X], poly[v, P_Y]
+            wp[v, P_X] = px + c * qx - s * qy
+            wp[v, P_Y] = py + s * qx + c * qy
+            qx, qy = poly[v, P_NX], poly[v, P_NY]
+            wp[v, P_NX] = c * qx - s * qy
+            wp[v, P_NY] = s * qx + c * qy
 
 
 @njit
@@ -57,6 +96,115 @@ def _fallback_normal(i, j, bi, bj, com):
     if d > TINY:
         return dx / d, dy / d
     return 0.0, (1.0 if i < j else -1.0)
+
+
+@njit
+def collide_rows(pairs, npairs, shape_int, shape_float, poly, com, cs, margin, ints, geoms):
+    """Contact manifolds of the shape pairs ``pairs[:npairs]`` (packed shape arrays,
+    ``sandbox.geometry_arrays``) at the bodies' current poses, written into contact rows
+    (``sandbox.contact``: ``ints`` and the narrowphase columns of ``geoms``), at most one per
+    pair, in pair order. Returns the number of manifolds.
+
+    Per pair: circle-circle and polygon-circle (:mod:`~sandbox.narrowphase.circles`),
+    polygon-polygon (:mod:`~sandbox.narrowphase.polygons`). Everything a pair needs is read
+    here and handed on as numbers (and the one array of world-frame polygons): every array a
+    compiled helper receives costs a reference count update per call, more than a circle pair's
+    arithmetic.
+    """
+    wp = np.empty((poly.shape[0], 4))
+    place_polygons(shape_int, poly, com, cs, wp)
+    n = 0
+    for q in range(npairs):
+        i, j = pairs[q, 0], pairs[q, 1]
+        bi, bj = shape_int[i, S_BODY], shape_int[j, S_BODY]
+        if bi == bj:  # shapes of one body never collide
+            continue
+        pxi, pyi, pxj, pyj = com[bi, 0], com[bi, 1], com[bj, 0], com[bj, 1]
+        # the shapes lie within circles of radius "bound" about the centres of mass: apart by
+        # more than the margin (and a hair, for rounding), they cannot touch
+        dx, dy = pxj - pxi, pyj - pyi
+        reach = shape_float[i, S_BOUND] + shape_float[j, S_BOUND] + margin
+        if dx * dx + dy * dy > reach * reach * (1.0 + 1e-9) + 1e-12:
+            continue
+        kind_i, kind_j = shape_int[i, S_KIND], shape_int[j, S_KIND]
+        ri, rj = shape_float[i, S_RADIUS], shape_float[j, S_RADIUS]
+        # circle centres in the world: com + R(cs) q
+        ci, si, cj, sj = cs[bi, 0], cs[bi, 1], cs[bj, 0], cs[bj, 1]
+        qx, qy = shape_float[i, S_CX], shape_float[i, S_CY]
+        cxi, cyi = pxi + ci * qx - si * qy, pyi + si * qx + ci * qy
+        qx, qy = shape_float[j, S_CX], shape_float[j, S_CY]
+        cxj, cyj = pxj + cj * qx - sj * qy, pyj + sj * qx + cj * qy
+        x1 = y1 = d1 = 0.0
+        f0 = f1 = 0
+        if kind_i == CIRCLE and kind_j == CIRCLE:
+            fx = fy = 0.0  # the normal for coincident centres, only worked out when needed
+            ex, ey = cxj - cxi, cyj - cyi
+            if ex * ex + ey * ey <= 4.0 * TINY * TINY:
+                fx, fy = _fallback_normal(i, j, bi, bj, com)
+            cnt, nx, ny, x0, y0, d0 = circle_circle(cxi, cyi, ri, cxj, cyj, rj, fx, fy, margin)
+        elif kind_j == CIRCLE:
+            o, c = shape_int[i, S_VSTART], shape_int[i, S_VCOUNT]
+            cnt, nx, ny, x0, y0, d0 = polygon_circle(wp, o, c, cxj, cyj, rj, margin)
+        elif kind_i == CIRCLE:
+            o, c = shape_int[j, S_VSTART], shape_int[j, S_VCOUNT]
+            cnt, nx, ny, x0, y0, d0 = polygon_circle(wp, o, c, cxi, cyi, ri, margin)
+            nx, ny = -nx, -ny  # the polygon is shape b: normal from a (circle) to b
+        else:
+            cnt, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = polygon_polygon(
+                wp, shape_int[i, S_VSTART], shape_int[i, S_VCOUNT],
+                shape_int[j, S_VSTART], shape_int[j, S_VCOUNT], i < j, margin,
+            )  # fmt: skip
+        if cnt == 0:
+            continue
+        ints[n, I_A], ints[n, I_B] = bi, bj
+        ints[n, I_SA], ints[n, I_SB], ints[n, I_COUNT] = i, j, cnt
+        ints[n, I_FEATURE], ints[n, I_FEATURE + 1] = f0, (f1 if cnt == 2 else -1)
+        geoms[n, G_NX], geoms[n, G_NY] = nx, ny
+        geoms[n, G_FRICTION] = shape_float[i, S_FRICTION] * shape_float[j, S_FRICTION]
+        geoms[n, G_RESTITUTION] = shape_float[i, S_RESTITUTION] * shape_float[j, S_RESTITUTION]
+        p = G_POINT
+        geoms[n, p + X], geoms[n, p + Y], geoms[n, p + DEPTH] = x0, y0, d0
+        p = G_POINT + G_STRIDE
+        if cnt == 2:
+            geoms[n, p + X], geoms[n, p + Y], geoms[n, p + DEPTH] = x1, y1, d1
+        else:
+            geoms[n, p + X] = geoms[n, p + Y] = geoms[n, p + DEPTH] = 0.0
+        n += 1
+    return n
+
+
+@njit
+def collide_packed(pairs, shape_int, shape_float, poly, com, cs, margin):
+    """:func:`collide_rows` for all ``pairs``, as the manifold arrays
+    ``(a, b, sa, sb, normal, count, point, depth, feature, friction, restitution)``."""
+    k = pairs.shape[0]
+    ints = np.empty((k, INT_COLS), dtype=np.int64)
+    geoms = np.empty((k, GEOM_COLS))
+    n = collide_rows(pairs, k, shape_int, shape_float, poly, com, cs, margin, ints, geoms)
+    normal = np.empty((n, 2))
+    point = np.empty((n, 2, 2))
+    depth = np.empty((n, 2))
+    feature = np.empty((n, 2), dtype=np.int64)
+    for i in range(n):
+        normal[i, 0], normal[i, 1] = geoms[i, G_NX], geoms[i, G_NY]
+        for j in range(2):
+            p = G_POINT + G_STRIDE * j
+            point[i, j, 0], point[i, j, 1] = geoms[i, p + X], geoms[i, p + Y]
+            depth[i, j] = geoms[i, p + DEPTH]
+            feature[i, j] = ints[i, I_FEATURE + j]
+    return (
+        ints[:n, I_A].copy(),
+        ints[:n, I_B].copy(),
+        ints[:n, I_SA].copy(),
+        ints[:n, I_SB].copy(),
+        normal,
+        ints[:n, I_COUNT].copy(),
+        point,
+        depth,
+        feature,
+        geoms[:n, G_FRICTION].copy(),
+        geoms[:n, G_RESTITUTION].copy(),
+    )
 
 
 @njit
@@ -76,83 +224,23 @@ def collide_arrays(
     cs,
     margin,
 ):
-    """Compiled kernel of :func:`collide`: the manifold arrays as a tuple
-    ``(a, b, sa, sb, normal, count, point, depth, feature, friction, restitution)``."""
-    k = pairs.shape[0]
-    vmax = 1
-    for q in range(k):
-        vmax = max(vmax, shape_vcount[pairs[q, 0]], shape_vcount[pairs[q, 1]])
-    # world-frame scratch for the two shapes of the current pair
-    wv_i, wn_i = np.empty((vmax, 2)), np.empty((vmax, 2))
-    wv_j, wn_j = np.empty((vmax, 2)), np.empty((vmax, 2))
-    out_a = np.empty(k, dtype=np.int64)
-    out_b = np.empty(k, dtype=np.int64)
-    out_sa = np.empty(k, dtype=np.int64)
-    out_sb = np.empty(k, dtype=np.int64)
-    normal = np.empty((k, 2))
-    count = np.empty(k, dtype=np.int64)
-    point = np.zeros((k, 2, 2))
-    depth = np.zeros((k, 2))
-    feature = np.full((k, 2), -1, dtype=np.int64)
-    friction = np.empty(k)
-    restitution = np.empty(k)
-    n = 0
-    for q in range(k):
-        i, j = pairs[q, 0], pairs[q, 1]
-        bi, bj = shape_body[i], shape_body[j]
-        if bi == bj:  # shapes of one body never collide
-            continue
-        # world transform of a body-frame point q: com + R(cs) q
-        ci, si, pxi, pyi = cs[bi, 0], cs[bi, 1], com[bi, 0], com[bi, 1]
-        cj, sj, pxj, pyj = cs[bj, 0], cs[bj, 1], com[bj, 0], com[bj, 1]
-        qx, qy = shape_center[i, 0], shape_center[i, 1]
-        cxi, cyi = pxi + ci * qx - si * qy, pyi + si * qx + ci * qy
-        qx, qy = shape_center[j, 0], shape_center[j, 1]
-        cxj, cyj = pxj + cj * qx - sj * qy, pyj + sj * qx + cj * qy
-        ni, nj = shape_vcount[i], shape_vcount[j]
-        if shape_kind[i] == POLYGON:
-            _place_polygon(verts, normals, shape_vstart[i], ni, ci, si, pxi, pyi, wv_i, wn_i)
-        if shape_kind[j] == POLYGON:
-            _place_polygon(verts, normals, shape_vstart[j], nj, cj, sj, pxj, pyj, wv_j, wn_j)
-        ri, rj = shape_radius[i], shape_radius[j]
-        x1 = y1 = d1 = 0.0
-        f0 = f1 = 0
-        if shape_kind[i] == CIRCLE and shape_kind[j] == CIRCLE:
-            fx, fy = _fallback_normal(i, j, bi, bj, com)
-            cnt, nx, ny, x0, y0, d0 = circle_circle(cxi, cyi, ri, cxj, cyj, rj, fx, fy, margin)
-        elif shape_kind[j] == CIRCLE:
-            cnt, nx, ny, x0, y0, d0 = polygon_circle(wv_i, wn_i, ni, cxj, cyj, rj, margin)
-        elif shape_kind[i] == CIRCLE:
-            cnt, nx, ny, x0, y0, d0 = polygon_circle(wv_j, wn_j, nj, cxi, cyi, ri, margin)
-            nx, ny = -nx, -ny  # the polygon is shape b: normal from a (circle) to b
-        else:
-            cnt, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = polygon_polygon(
-                wv_i, wn_i, ni, wv_j, wn_j, nj, i < j, margin
-            )
-        if cnt == 0:
-            continue
-        out_a[n], out_b[n], out_sa[n], out_sb[n] = bi, bj, i, j
-        normal[n, 0], normal[n, 1] = nx, ny
-        count[n] = cnt
-        point[n, 0, 0], point[n, 0, 1], depth[n, 0], feature[n, 0] = x0, y0, d0, f0
-        if cnt == 2:
-            point[n, 1, 0], point[n, 1, 1], depth[n, 1], feature[n, 1] = x1, y1, d1, f1
-        friction[n] = shape_friction[i] * shape_friction[j]
-        restitution[n] = shape_restitution[i] * shape_restitution[j]
-        n += 1
-    return (
-        out_a[:n],
-        out_b[:n],
-        out_sa[:n],
-        out_sb[:n],
-        normal[:n],
-        count[:n],
-        point[:n],
-        depth[:n],
-        feature[:n],
-        friction[:n],
-        restitution[:n],
-    )
+    """:func:`collide_packed` on the flattened (unpacked) shape arrays."""
+    m, nv = shape_body.shape[0], verts.shape[0]
+    shape_int = np.empty((m, 4), dtype=np.int64)
+    shape_float = np.empty((m, 8))
+    poly = np.empty((nv, 4))
+    for i in range(m):
+        shape_int[i, S_BODY], shape_int[i, S_KIND] = shape_body[i], shape_kind[i]
+        shape_int[i, S_VSTART], shape_int[i, S_VCOUNT] = shape_vstart[i], shape_vcount[i]
+        shape_float[i, S_RADIUS] = shape_radius[i]
+        shape_float[i, S_CX], shape_float[i, S_CY] = shape_center[i, 0], shape_center[i, 1]
+        shape_float[i, S_FRICTION] = shape_friction[i]
+        shape_float[i, S_RESTITUTION] = shape_restitution[i]
+        shape_float[i, S_BOUND] = np.inf
+    for v in range(nv):
+        poly[v, P_X], poly[v, P_Y] = verts[v, 0], verts[v, 1]
+        poly[v, P_NX], poly[v, P_NY] = normals[v, 0], normals[v, 1]
+    return collide_packed(pairs, shape_int, shape_float, poly, com, cs, margin)
 
 
 def collide(

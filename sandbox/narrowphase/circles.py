@@ -42,10 +42,10 @@ def circle_circle(p1x, p1y, r1, p2x, p2y, r2, fx, fy, margin):
 
 
 @njit
-def polygon_circle(verts, normals, count, cx, cy, r, margin):
-    """Convex polygon (world-frame ``verts[:count]``, CCW, with outward edge ``normals``)
-    against the circle of centre ``(cx, cy)`` and radius ``r``; the normal points from the
-    polygon to the circle.
+def polygon_circle(wp, o, count, cx, cy, r, margin):
+    """Convex polygon (world-frame rows ``o`` to ``o + count`` of ``wp``: vertex x, y and the
+    outward normal of the edge starting there, CCW) against the circle of centre ``(cx, cy)``
+    and radius ``r``; the normal points from the polygon to the circle.
 
     The edge of largest separation n_i . (c - v_i) decides the region of the centre: beyond one
     of the edge's end vertices (vertex region: the normal points from that vertex to the centre)
@@ -55,16 +55,17 @@ def polygon_circle(verts, normals, count, cx, cy, r, margin):
     best = -math.inf
     edge = 0
     for i in range(count):
-        sep = normals[i, 0] * (cx - verts[i, 0]) + normals[i, 1] * (cy - verts[i, 1])
+        v = o + i
+        sep = wp[v, 2] * (cx - wp[v, 0]) + wp[v, 3] * (cy - wp[v, 1])
         if sep > best:
             best = sep
             edge = i
     if best - r > margin:
         return 0, 0.0, 0.0, 0.0, 0.0, 0.0
-    i1 = edge
-    i2 = edge + 1 if edge + 1 < count else 0
-    v1x, v1y = verts[i1, 0], verts[i1, 1]
-    v2x, v2y = verts[i2, 0], verts[i2, 1]
+    i1 = o + edge
+    i2 = o + (edge + 1 if edge + 1 < count else 0)
+    v1x, v1y = wp[i1, 0], wp[i1, 1]
+    v2x, v2y = wp[i2, 0], wp[i2, 1]
     ex, ey = v2x - v1x, v2y - v1y
     u1 = (cx - v1x) * ex + (cy - v1y) * ey  # < 0: the centre is behind v1 along the edge
     u2 = (cx - v2x) * -ex + (cy - v2y) * -ey  # < 0: the centre is beyond v2
@@ -82,7 +83,7 @@ def polygon_circle(verts, normals, count, cx, cy, r, margin):
         nx, ny = dx / dist, dy / dist
     else:
         # face region: the centre projects onto the edge (or lies inside the polygon)
-        nx, ny = normals[i1, 0], normals[i1, 1]
+        nx, ny = wp[i1, 2], wp[i1, 3]
         depth = r - best
         qx, qy = cx - best * nx, cy - best * ny
     # midway between the polygon surface point q and the deepest circle point c - r n

@@ -36,16 +36,20 @@ FEATURE_VERTEX_VERTEX = 2 << 32
 
 
 @njit
-def max_separation(v1, n1, c1, v2, c2):
-    """Largest separation of polygon 2 along the edge normals of polygon 1, and that edge."""
+def max_separation(wp, o1, c1, o2, c2):
+    """Largest separation of polygon 2 along the edge normals of polygon 1, and that edge.
+
+    Polygons are world-frame rows of ``wp`` (x, y and the outward normal of the edge starting at
+    that vertex): polygon 1 is rows ``o1`` to ``o1 + c1``, polygon 2 rows ``o2`` to ``o2 + c2``.
+    """
     best = -math.inf
     edge = 0
     for i in range(c1):
-        nx, ny = n1[i, 0], n1[i, 1]
-        px, py = v1[i, 0], v1[i, 1]
+        nx, ny = wp[o1 + i, 2], wp[o1 + i, 3]
+        px, py = wp[o1 + i, 0], wp[o1 + i, 1]
         si = math.inf
         for j in range(c2):
-            d = nx * (v2[j, 0] - px) + ny * (v2[j, 1] - py)
+            d = nx * (wp[o2 + j, 0] - px) + ny * (wp[o2 + j, 1] - py)
             if d < si:
                 si = d
         if si > best:
@@ -55,12 +59,13 @@ def max_separation(v1, n1, c1, v2, c2):
 
 
 @njit
-def incident_edge(n2, c2, nx, ny):
-    """Edge of polygon 2 whose outward normal is most anti-parallel to ``(nx, ny)``."""
+def incident_edge(wp, o2, c2, nx, ny):
+    """Edge of polygon 2 (rows ``o2`` to ``o2 + c2`` of ``wp``) whose outward normal is most
+    anti-parallel to ``(nx, ny)``."""
     best = math.inf
     edge = 0
     for i in range(c2):
-        d = n2[i, 0] * nx + n2[i, 1] * ny
+        d = wp[o2 + i, 2] * nx + wp[o2 + i, 3] * ny
         if d < best:
             best = d
             edge = i
@@ -97,9 +102,9 @@ def segment_fractions(p1x, p1y, q1x, q1y, p2x, p2y, q2x, q2y):
 
 
 @njit
-def polygon_polygon(v_a, n_a, c_a, v_b, n_b, c_b, prefer_a, margin):
-    """Manifold of convex polygons a and b: world-frame vertices ``v_a[:c_a]`` (CCW) and outward
-    edge normals ``n_a[:c_a]``, likewise for b.
+def polygon_polygon(wp, o_a, c_a, o_b, c_b, prefer_a, margin):
+    """Manifold of convex polygons a and b: world-frame rows ``o_a`` to ``o_a + c_a`` of ``wp``
+    (vertex x, y, CCW, and the outward normal of the edge starting there), likewise for b.
 
     ``prefer_a``: polygon a keeps the reference face on near-ties (pass ``sa < sb`` so the
     choice is the same whichever order the pair comes in). Returns
@@ -108,10 +113,10 @@ def polygon_polygon(v_a, n_a, c_a, v_b, n_b, c_b, prefer_a, margin):
     """
     none = (0, 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0)
     # 1. separating axis test on both polygons' edge normals
-    sep_a, edge_a = max_separation(v_a, n_a, c_a, v_b, c_b)
+    sep_a, edge_a = max_separation(wp, o_a, c_a, o_b, c_b)
     if sep_a > margin:
         return none
-    sep_b, edge_b = max_separation(v_b, n_b, c_b, v_a, c_a)
+    sep_b, edge_b = max_separation(wp, o_b, c_b, o_a, c_a)
     if sep_b > margin:
         return none
     # 2. reference face, with a tolerance that prefers a stable choice
@@ -120,19 +125,19 @@ def polygon_polygon(v_a, n_a, c_a, v_b, n_b, c_b, prefer_a, margin):
     else:
         flip = not (sep_a > RELATIVE_TOL * sep_b + ABSOLUTE_TOL)
     if flip:  # reference face on b
-        v1, n1, c1, e1, v2, n2, c2 = v_b, n_b, c_b, edge_b, v_a, n_a, c_a
+        o1, c1, e1, o2, c2 = o_b, c_b, edge_b, o_a, c_a
     else:
-        v1, n1, c1, e1, v2, n2, c2 = v_a, n_a, c_a, edge_a, v_b, n_b, c_b
+        o1, c1, e1, o2, c2 = o_a, c_a, edge_a, o_b, c_b
     sign = -1.0 if flip else 1.0  # turns the reference normal into the a -> b normal
-    nx, ny = n1[e1, 0], n1[e1, 1]
+    nx, ny = wp[o1 + e1, 2], wp[o1 + e1, 3]
     # 3. incident edge on the other polygon
-    e2 = incident_edge(n2, c2, nx, ny)
+    e2 = incident_edge(wp, o2, c2, nx, ny)
     i11, i12 = e1, (e1 + 1 if e1 + 1 < c1 else 0)
     i21, i22 = e2, (e2 + 1 if e2 + 1 < c2 else 0)
-    v11x, v11y = v1[i11, 0], v1[i11, 1]
-    v12x, v12y = v1[i12, 0], v1[i12, 1]
-    v21x, v21y = v2[i21, 0], v2[i21, 1]
-    v22x, v22y = v2[i22, 0], v2[i22, 1]
+    v11x, v11y = wp[o1 + i11, 0], wp[o1 + i11, 1]
+    v12x, v12y = wp[o1 + i12, 0], wp[o1 + i12, 1]
+    v21x, v21y = wp[o2 + i21, 0], wp[o2 + i21, 1]
+    v22x, v22y = wp[o2 + i22, 0], wp[o2 + i22, 1]
 
     # 4. apart: the closest features may be two vertices (speculative contact)
     if max(sep_a, sep_b) > VERTEX_TOL:
@@ -140,13 +145,13 @@ def polygon_polygon(v_a, n_a, c_a, v_b, n_b, c_b, prefer_a, margin):
         if (f1 == 0.0 or f1 == 1.0) and (f2 == 0.0 or f2 == 1.0):
             r = i11 if f1 == 0.0 else i12
             k = i21 if f2 == 0.0 else i22
-            wx = v2[k, 0] - v1[r, 0]
-            wy = v2[k, 1] - v1[r, 1]
+            wx = wp[o2 + k, 0] - wp[o1 + r, 0]
+            wy = wp[o2 + k, 1] - wp[o1 + r, 1]
             dist = math.sqrt(wx * wx + wy * wy)  # >= the separation > VERTEX_TOL
             if dist > margin:
                 return none
-            px = 0.5 * (v1[r, 0] + v2[k, 0])
-            py = 0.5 * (v1[r, 1] + v2[k, 1])
+            px = 0.5 * (wp[o1 + r, 0] + wp[o2 + k, 0])
+            py = 0.5 * (wp[o1 + r, 1] + wp[o2 + k, 1])
             fid = FEATURE_VERTEX_VERTEX + (k * 65536 + r if flip else r * 65536 + k)
             ux, uy = sign * wx / dist, sign * wy / dist
             return 1, ux, uy, px, py, -dist, fid, 0.0, 0.0, 0.0, 0

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.solvers import iterative
+from sandbox.solvers import impulse, iterative
 from sandbox.solvers.impulse import along, apply, effective_mass, load, store
 
 UNREACHED = 1 << 40  # layer of bodies with no path of contacts to a fixed body
@@ -115,8 +115,11 @@ def solve_velocities(world, manifolds, dt: float) -> None:
     """Relaxation sweeps (contacts and joints) and restitution, then the shock pass."""
     # the relaxation remembers its own impulses for warm starting: the shock pass's
     # one-sided pushes (still reported in the manifolds) would not balance in the next step
-    m, cons = iterative.relax(world, manifolds, dt)
+    m = iterative.relax(world, manifolds, dt)
     if len(m):
+        # lever arms and velocity targets of the contacts (positions only: the same as the
+        # relaxation's)
+        cons = impulse.build(world, m, dt)
         layer = contact_layers(m.a, m.b, world.inv_mass == 0.0)
         level = np.maximum(layer[m.a], layer[m.b])
         order = np.argsort(level, kind="stable")
