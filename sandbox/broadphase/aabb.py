@@ -132,6 +132,9 @@ def swept_aabbs(aabb0: np.ndarray, aabb1: np.ndarray) -> np.ndarray:
 
 
 # ---- shared by the strategy kernels ----------------------------------------------------------
+# Each kernel spells out the same five lines per candidate pair (skip, count, record, test,
+# keep). Folding them into one inlined helper returning (k, tests) was measured to make the grid
+# about 1.5x and the quadtree about 2.5x slower at 10,000 boxes, so the repetition stays.
 
 
 @njit
