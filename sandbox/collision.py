@@ -15,7 +15,9 @@ Two ways through the same kernels:
   the whole step runs as one compiled function over preallocated arrays
   (:class:`sandbox.contact.ContactBuffers`), because each compiled call from Python costs
   microseconds, as much as a small world's whole step. It calls the very kernels the first way
-  calls, in the same order, so both give bit-identical results.
+  calls, on the same numbers, so both give bit-identical results (it prepares the contacts
+  before adding this step's gravity; the first way prepares them afterwards from a copy of the
+  velocities before it).
 
 numba caches each compiled function under its own source file only: after editing a kernel in
 one module, functions in other modules that call it (the compiled step calls kernels from a
@@ -36,7 +38,7 @@ from sandbox.geometry_arrays import S_BODY
 from sandbox.jit import njit
 from sandbox.narrowphase import collide_rows
 from sandbox.penetration import position_phase
-from sandbox.solvers.iterative import velocity_phase
+from sandbox.solvers.iterative import prepare_rows, velocity_phase
 
 # ---- step by step --------------------------------------------------------------------------
 
@@ -79,8 +81,11 @@ def detect(world, margin: float = 0.0):
     return manifolds
 
 
-def solve_velocities(world, dt: float):
-    """Find contacts and let the world's solver change velocities; returns the manifolds."""
+def solve_velocities(world, dt: float, start=None):
+    """Find contacts and let the world's solver change velocities; returns the manifolds.
+    ``start`` = (vel, omega) at the start of the step, before this step's gravity and forces
+    were added (copies): the approach velocities restitution reflects (default: the current
+    velocities)."""
     has_shapes = len(world.geometry()) >= 2
     manifolds = detect(world, world.settings.contact_margin) if has_shapes else None
     if (manifolds is None or len(manifolds) == 0) and not world.joints:
@@ -90,7 +95,7 @@ def solve_velocities(world, dt: float):
         return manifolds
     from sandbox import solvers
 
-    solvers.get(world.settings.solver).solve_velocities(world, manifolds, dt)
+    solvers.get(world.settings.solver).solve_velocities(world, manifolds, dt, start)
     return manifolds
 
 
@@ -151,7 +156,7 @@ def contact_step(
     baumgarte, position_iterations,
 ):  # fmt: skip
     """One Euler step of a world with contacts (the phases of ``World._step_euler`` and of the
-    iterative solver, in their order). Returns ``(pairs, pair_tests, manifolds, points,
+    iterative solver). Returns ``(pairs, pair_tests, manifolds, points,
     warm-started points)``, or ``(-pairs, ...)`` with nothing changed when the pair buffer is too
     small (grow it and call again).
 
@@ -159,7 +164,7 @@ def contact_step(
     it sorted from step to step.
     """
     m = shape_int.shape[0]
-    # 1. broadphase at the current positions (no velocity is read: nothing changes before 2.)
+    # 1. broadphase at the current positions (no velocity is read: nothing changes before 3.)
     shape_aabbs_into(shape_int, shape_float, poly, com, cs, margin, aabb)
     axis = sweep_axis(aabb)
     update_order(aabb, axis, order, state[0])
@@ -174,15 +179,22 @@ def contact_step(
     if npairs > pairs_raw.shape[0]:
         return -npairs, tests, 0, 0, 0
     sort_pairs_into(pairs_raw, npairs, m, pair_count, pairs)
-    # 2. free-motion velocities
-    integrators.euler_velocities(kind, vel, omega, force, torque, inv_mass, inv_moment, gx, gy, dt)
-    # 3. narrowphase, 4. contact impulses (collision.solve_velocities, iterative.relax)
+    # 2. narrowphase at the same positions; the contacts are prepared before this step's gravity
+    # and forces are added, so restitution reflects the approach velocities the bodies came with
+    # (Box2D's order; the step by step path prepares with a copy of these velocities)
     k = collide_rows(pairs, npairs, shape_int, shape_float, poly, com, cs, margin, ints, geoms)
+    if k > 0:
+        prepare_rows(
+            ints, geoms, solver, k, com, cs, vel, omega, inv_mass, inv_moment, 1.0 / dt, 0.0, slop
+        )
+    # 3. free-motion velocities
+    integrators.euler_velocities(kind, vel, omega, force, torque, inv_mass, inv_moment, gx, gy, dt)
+    # 4. contact impulses (collision.solve_velocities, iterative.relax)
     found = 0
     if k > 0:
         found = velocity_phase(
-            ints, geoms, solver, k, old_ints, old_solver, k_old, com, cs, vel, omega, inv_mass,
-            inv_moment, 1.0 / dt, slop, warm, accumulate, iterations, threshold,
+            ints, geoms, solver, k, old_ints, old_solver, k_old, vel, omega, warm, accumulate,
+            iterations, threshold,
         )  # fmt: skip
     # 5. positions and orientations
     integrators.euler_positions(

@@ -109,9 +109,10 @@ class Manifolds:
 # ints (k, INT_COLS): bodies, shapes, point count, feature id of point j at I_FEATURE + j
 I_A, I_B, I_SA, I_SB, I_COUNT, I_FEATURE = 0, 1, 2, 3, 4, 5
 INT_COLS = 8
-# geometry (k, GEOM_COLS): what the narrowphase found, what the position pass needs, and the
-# restitution pass's impulse of point j at G_BOUNCE + j (kept apart from the solver's PN, which
-# is what the next step warm starts from)
+# geometry (k, GEOM_COLS): what the narrowphase found, what the position pass needs, the
+# approach velocity v_r . n at the start of the step (VN0, before this step's gravity and forces,
+# what restitution reflects) and the restitution pass's impulse of point j at G_BOUNCE + j (kept
+# apart from the solver's PN, which is what the next step warm starts from)
 G_NX, G_NY, G_FRICTION, G_RESTITUTION, G_REBOUND = 0, 1, 2, 3, 4
 G_POINT, G_STRIDE = 5, 8
 X, Y, DEPTH, LAX, LAY, LBX, LBY, VN0 = 0, 1, 2, 3, 4, 5, 6, 7  # per point

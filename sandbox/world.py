@@ -5,7 +5,8 @@ Per step (``docs/architecture.md`` has the details):
 1. forces: gravity, constant forces, controllers, force generators -> accelerations
 2. the integrator's free-motion increments (dp, dv, dphi, domega)
 3. v += dv; contacts found at the current positions (retroactive detection)
-4. the solver's impulses change v and omega (contacts and joints)
+4. the solver's impulses change v and omega (contacts and joints); bounces reflect the
+   approach velocities from before step 3 (before this step's gravity and forces)
 5. p += dp + (impulse velocity change) dt; orientation turned likewise
 6. continuous collision for ``ccd`` bodies, then the penetration fix
 """
@@ -263,8 +264,11 @@ class World:
             return
         g = self.gravity
         args = (self.force, self.torque, self.inv_mass, self.inv_moment, g[0], g[1], dt)
+        # the velocities before this step's gravity and forces: restitution reflects the
+        # approach velocities measured with them (Box2D's prepare step)
+        start = (self.vel.copy(), self.omega.copy())
         integrators.euler_velocities(self.kind, self.vel, self.omega, *args)
-        self.manifolds = collision.solve_velocities(self, dt)
+        self.manifolds = collision.solve_velocities(self, dt, start)
         dphi = self._dphi
         integrators.euler_positions(
             self.kind, self.com, self.vel, self.omega, *args, explicit, dphi
@@ -288,11 +292,14 @@ class World:
         kin = self.kind == KINEMATIC  # kinematic bodies move at their own velocity
         dp = np.where(kin[:, None], self.vel * dt, dp)
         dphi = np.where(kin, self.omega * dt, dphi)
+        # the velocities before this step's gravity and forces: restitution reflects the
+        # approach velocities measured with them (Box2D's prepare step)
+        start = (self.vel.copy(), self.omega.copy())
         self.vel += np.where(dyn[:, None], dv, 0.0)
         self.omega += np.where(dyn, dw, 0.0)
         v_free, w_free = self.vel.copy(), self.omega.copy()
 
-        self.manifolds = collision.solve_velocities(self, dt)
+        self.manifolds = collision.solve_velocities(self, dt, start)
 
         dp = dp + (self.vel - v_free) * dt
         dphi = dphi + (self.omega - w_free) * dt

@@ -142,6 +142,41 @@ def test_slow_impacts_do_not_bounce():
     assert normal_speed(w, (0.5, 0.0)) == pytest.approx(0.0, abs=1e-12)
 
 
+def start_and_push(w, start_speed, push):
+    """The disc approaches the box at ``start_speed`` (m/s) at the start of the step, then this
+    step's free motion adds ``push`` (m/s) along the normal, as gravity would; returns the
+    velocities at the start of the step (copies)."""
+    w.vel[:] = [[start_speed, 0.0], [0.0, 0.0]]
+    w.omega[:] = 0.0
+    start = (w.vel.copy(), w.omega.copy())
+    w.vel[0, 0] += push
+    return start
+
+
+@pytest.mark.parametrize("solver", ["pairwise", "iterative", "shock"])
+@pytest.mark.parametrize("push", [0.4, -0.4])
+def test_restitution_reflects_the_approach_velocity_from_the_start_of_the_step(solver, push):
+    # Box2D's prepare step: what the step's free motion added to v_r . n is cancelled, not
+    # reflected; the bounce is -e times the approach velocity at the start of the step (1e-12)
+    w = pair_world(0.5, solver=solver)
+    start = start_and_push(w, 2.0, push)
+    get(solver).solve_velocities(w, manifold(e=0.5), w.dt, start)
+    assert normal_speed(w, (0.5, 0.0)) == pytest.approx(0.5 * 2.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("solver", ["pairwise", "iterative", "shock"])
+@pytest.mark.parametrize("speed, push, bounces", [(0.9, 0.3, False), (1.1, -0.3, True)])
+def test_restitution_threshold_reads_the_approach_speed_from_the_start_of_the_step(
+    solver, speed, push, bounces
+):
+    # restitution_threshold 1 m/s against the approach speed at the start of the step: 0.9 m/s
+    # pushed to 1.2 m/s rests, 1.1 m/s slowed to 0.8 m/s bounces to e 1.1 m/s (1e-12)
+    w = pair_world(1.0, solver=solver)
+    start = start_and_push(w, speed, push)
+    get(solver).solve_velocities(w, manifold(e=1.0), w.dt, start)
+    assert normal_speed(w, (0.5, 0.0)) == pytest.approx(speed if bounces else 0.0, abs=1e-12)
+
+
 def test_friction_is_clamped_to_mu_times_the_normal_impulse():
     # a sliding contact: |tangent impulse| = mu * normal impulse (kinetic friction); the last
     # normal update after the last friction clamp leaves a difference of ~1e-9 (rel 1e-6)

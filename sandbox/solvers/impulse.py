@@ -10,7 +10,10 @@ Per contact point the solvers keep, as box2d-lite and Box2D do:
 - ``kn``, ``kt``: the effective masses 1 / k along the normal and the tangent;
 - ``bias``: the normal velocity the constraint asks for, v_r . n >= bias (m/s): the gap
   closed in this step for speculative contacts (depth < 0), else an optional Baumgarte push;
-- ``vn0``: the approach velocity v_r . n measured before the iterations, for restitution;
+- ``vn0``: the approach velocity v_r . n at the start of the step, before the iterations and
+  before this step's gravity and forces were added (as Box2D measures it), for restitution:
+  a bounce reflects the speed the bodies arrived with, not gravity's pull during the step;
+- ``dvn``: what this step's free motion (gravity, forces) added to v_r . n before the solve;
 - ``pn``, ``pt``: the impulses applied (accumulated), ``pmax`` the largest normal impulse seen;
 - ``rebound`` (per manifold): how much closer the bodies should end the step after a bounce
   that happened before they touched (see :func:`restitution`).
@@ -94,6 +97,7 @@ class Constraints:
         self.kblock = np.zeros((k, 4))
         self.bias = np.zeros((k, 2))
         self.vn0 = np.zeros((k, 2))
+        self.dvn = np.zeros((k, 2))
         self.sep0 = np.zeros((k, 2))
         self.pmax = np.zeros((k, 2))
         self.rebound = np.zeros(k)
@@ -101,10 +105,13 @@ class Constraints:
 
 @njit
 def prepare(
-    a, b, normal, count, point, depth, com, cs, vel, omega, inv_mass, inv_moment,
-    inv_dt, beta, slop, r1, r2, la, lb, kn, kt, kblock, bias, vn0, sep0,
+    a, b, normal, count, point, depth, com, cs, vel, omega, vel0, omega0, inv_mass, inv_moment,
+    inv_dt, beta, slop, r1, r2, la, lb, kn, kt, kblock, bias, vn0, dvn, sep0,
 ):  # fmt: skip
     """Lever arms, effective masses, velocity targets and approach velocities of every point.
+
+    vn0: v_r . n for the velocities at the start of the step (``vel0``, ``omega0``, before this
+    step's gravity and forces); dvn: v_r . n now (``vel``, ``omega``) minus vn0.
 
     bias: depth < 0 (a speculative contact, a gap of -depth): the bodies may still approach
     by the gap in this step, v_r . n >= depth / dt; depth > 0: beta / dt (depth - slop), the
@@ -126,10 +133,15 @@ def prepare(
             k = effective_mass(im1, ii1, im2, ii2, r1x, r1y, r2x, r2y, ny, -nx)
             kt[i, j] = 1.0 / k if k > 0.0 else 0.0
             vx, vy = relative_velocity(
+                vel0[ia, 0], vel0[ia, 1], omega0[ia], r1x, r1y,
+                vel0[ib, 0], vel0[ib, 1], omega0[ib], r2x, r2y,
+            )  # fmt: skip
+            vn0[i, j] = vx * nx + vy * ny
+            vx, vy = relative_velocity(
                 vel[ia, 0], vel[ia, 1], omega[ia], r1x, r1y,
                 vel[ib, 0], vel[ib, 1], omega[ib], r2x, r2y,
             )  # fmt: skip
-            vn0[i, j] = vx * nx + vy * ny
+            dvn[i, j] = vx * nx + vy * ny - vn0[i, j]
             d = depth[i, j]
             sep0[i, j] = -d
             bias[i, j] = d * inv_dt if d < 0.0 else beta * inv_dt * max(d - slop, 0.0)
@@ -199,10 +211,12 @@ def restitution(
     a, b, normal, count, rest, r1, r2, kn, vn0, sep0, pn, pmax, rebound,
     vel, omega, inv_mass, inv_moment, threshold,
 ) -> None:  # fmt: skip
-    """Bounce: v_r . n = -e v_r0 . n with the approach velocity from before the iterations.
+    """Bounce: v_r . n = -e v_r0 . n with the approach velocity v_r0 . n from the start of the
+    step, before the iterations and before this step's gravity and forces (``vn0``).
 
     As Box2D's restitution: only points that approached faster than ``threshold`` (m/s) and
-    carried an impulse bounce; slower contacts rest. The total impulse stays >= 0.
+    carried an impulse bounce; slower contacts rest. The total impulse stays >= 0. Measured
+    after gravity, the approach speed would be g dt too fast and every bounce would gain height.
 
     A speculative point (a gap g = sep0 > 0 at the start of the step) bounces here, before it
     touched; had it bounced at its time of impact, the bodies would end the step (1 + e) g
@@ -241,19 +255,27 @@ def empty_manifolds(manifolds):
     return manifolds
 
 
-def build(world, manifolds, dt: float, beta: float = 0.0) -> Constraints:
+def start_velocities(world, start=None) -> tuple[np.ndarray, np.ndarray]:
+    """``start`` = (vel, omega) at the start of the step, before this step's gravity and forces
+    were added (what the world's step passes), or, without it, the current velocities."""
+    return (world.vel, world.omega) if start is None else start
+
+
+def build(world, manifolds, dt: float, beta: float = 0.0, start=None) -> Constraints:
     """Prepare every contact point (see :func:`prepare`) and keep the result for this step's
     position phase (``world._solver_cache["constraints"]``). ``beta`` is a Baumgarte velocity
     bias factor; the solvers use 0 and remove overlap on positions (:mod:`sandbox.penetration`)
-    instead, so no velocity is added to push bodies apart."""
+    instead, so no velocity is added to push bodies apart. ``start``: see
+    :func:`start_velocities`."""
     m = manifolds
     cons = Constraints(len(m))
     if len(m):
+        vel0, omega0 = start_velocities(world, start)
         prepare(
             m.a, m.b, m.normal, m.count, m.point, m.depth, world.com, world.cs, world.vel,
-            world.omega, world.inv_mass, world.inv_moment, 1.0 / dt, float(beta),
+            world.omega, vel0, omega0, world.inv_mass, world.inv_moment, 1.0 / dt, float(beta),
             float(world.settings.slop), cons.r1, cons.r2, cons.la, cons.lb, cons.kn, cons.kt,
-            cons.kblock, cons.bias, cons.vn0, cons.sep0,
+            cons.kblock, cons.bias, cons.vn0, cons.dvn, cons.sep0,
         )  # fmt: skip
     world._solver_cache["constraints"] = (m, cons)
     return cons

@@ -16,7 +16,8 @@ The box2d-lite teaching switches:
   (:mod:`sandbox.penetration`, ``settings.penetration``; ``position_iterations`` passes).
 
 Restitution is a pass after the sweeps, from the approach velocities measured before them
-(Box2D), so resting contacts do not bounce. Overlap is removed on positions only (no Baumgarte
+and before this step's gravity and forces were added (Box2D measures them in its prepare step,
+before integrating velocities), so resting contacts do not bounce and bounces gain no energy. Overlap is removed on positions only (no Baumgarte
 velocity bias): the velocities stay free of the extra push a velocity bias adds, which would
 make resting boxes hop and stacks jitter.
 """
@@ -184,12 +185,15 @@ def visit(q: int, half: int) -> int:
 
 @njit
 def prepare_rows(
-    ints, geoms, solver, k, com, cs, vel, omega, inv_mass, inv_moment, inv_dt, beta, slop
+    ints, geoms, solver, k, com, cs, vel0, omega0, inv_mass, inv_moment, inv_dt, beta, slop
 ):  # fmt: skip
     """:func:`sandbox.solvers.impulse.prepare` for contact rows: lever arms (as r x n, r x t and
     in each body's frame), effective masses, velocity targets, approach velocities and the
     inverse of the 2x2 block matrix K; impulses and the restitution columns start at zero
-    (also in an unused second slot, whose other columns nothing reads)."""
+    (also in an unused second slot, whose other columns nothing reads).
+
+    ``vel0``, ``omega0``: the velocities at the start of the step, before this step's gravity
+    and forces were added; only the approach velocities ``VN0`` (for restitution) read them."""
     for i in range(k):
         ia, ib, count = ints[i, I_A], ints[i, I_B], ints[i, I_COUNT]
         nx, ny = geoms[i, G_NX], geoms[i, G_NY]
@@ -218,10 +222,10 @@ def prepare_rows(
             solver[i, p + KN] = 1.0 / kn if kn > 0.0 else 0.0
             solver[i, p + KT] = 1.0 / kt if kt > 0.0 else 0.0
             vx, vy = relative_velocity(
-                vel[ia, 0], vel[ia, 1], omega[ia], r1x, r1y,
-                vel[ib, 0], vel[ib, 1], omega[ib], r2x, r2y,
+                vel0[ia, 0], vel0[ia, 1], omega0[ia], r1x, r1y,
+                vel0[ib, 0], vel0[ib, 1], omega0[ib], r2x, r2y,
             )  # fmt: skip
-            geoms[i, g + VN0] = vx * nx + vy * ny
+            geoms[i, g + VN0] = vx * nx + vy * ny  # approach velocity before gravity
             d = geoms[i, g + DEPTH]
             solver[i, p + BIAS] = d * inv_dt if d < 0.0 else beta * inv_dt * max(d - slop, 0.0)
         solver[i, S_BLOCK] = 0.0
@@ -389,15 +393,13 @@ def restitution_rows(ints, geoms, solver, k, vel, omega, threshold) -> None:
 
 @njit
 def velocity_phase(
-    ints, geoms, solver, k, old_ints, old_solver, k_old, com, cs, vel, omega, inv_mass,
-    inv_moment, inv_dt, slop, warm, accumulate, iterations, threshold,
+    ints, geoms, solver, k, old_ints, old_solver, k_old, vel, omega, warm, accumulate,
+    iterations, threshold,
 ) -> int:  # fmt: skip
-    """The whole velocity phase on contact rows (no joints): prepare, warm start from the last
-    set of rows (``old_*``, ``k_old`` manifolds), ``iterations`` sweeps, restitution. Returns the
-    number of warm-started points."""
-    prepare_rows(
-        ints, geoms, solver, k, com, cs, vel, omega, inv_mass, inv_moment, inv_dt, 0.0, slop
-    )
+    """The velocity phase on contact rows already prepared (:func:`prepare_rows`, with the
+    velocities of the start of the step), no joints: warm start from the last set of rows
+    (``old_*``, ``k_old`` manifolds), ``iterations`` sweeps, restitution, on ``vel``, ``omega``
+    (this step's free motion already added). Returns the number of warm-started points."""
     found = 0
     if warm:
         found = match_rows(ints, solver, k, old_ints, old_solver, k_old)
@@ -420,11 +422,12 @@ def sweep(world, m, cons, iterations: int) -> None:
         )  # fmt: skip
 
 
-def relax(world, manifolds, dt: float):
+def relax(world, manifolds, dt: float, start=None):
     """Prepare, warm start, ``settings.iterations`` sweeps over contacts and joints, bounce, on
     the world's contact rows (``sandbox.contact.ContactBuffers``), which then hold the impulses
     for the next step's warm start. The impulses applied are also written into the manifolds,
-    which are returned."""
+    which are returned. ``start``: ``(vel, omega)`` at the start of the step, before this step's
+    gravity and forces (default: the current velocities), for the bounces."""
     s = world.settings
     m = impulse.empty_manifolds(manifolds)
     k = len(m)
@@ -441,9 +444,12 @@ def relax(world, manifolds, dt: float):
         )  # fmt: skip
     warm = bool(s.warm_start and s.accumulate_impulses)
     accumulate = bool(s.accumulate_impulses)
-    body = (world.com, world.cs, world.vel, world.omega, world.inv_mass, world.inv_moment)
+    vel0, omega0 = impulse.start_velocities(world, start)
+    prepare_rows(
+        ints, geoms, solver, k, world.com, world.cs, vel0, omega0, world.inv_mass,
+        world.inv_moment, 1.0 / dt, 0.0, float(s.slop),
+    )  # fmt: skip
     if world.joints:
-        prepare_rows(ints, geoms, solver, k, *body, 1.0 / dt, 0.0, float(s.slop))
         found = 0
         if warm:
             found = match_rows(ints, solver, k, old_ints, old_solver, cache.k[old])
@@ -457,8 +463,8 @@ def relax(world, manifolds, dt: float):
         )
     else:
         found = velocity_phase(
-            ints, geoms, solver, k, old_ints, old_solver, cache.k[old], *body, 1.0 / dt,
-            float(s.slop), warm, accumulate, int(s.iterations), float(s.restitution_threshold),
+            ints, geoms, solver, k, old_ints, old_solver, cache.k[old], world.vel, world.omega,
+            warm, accumulate, int(s.iterations), float(s.restitution_threshold),
         )  # fmt: skip
     cache.commit(cur, k)
     cache.source = m
@@ -468,9 +474,10 @@ def relax(world, manifolds, dt: float):
     return m
 
 
-def solve_velocities(world, manifolds, dt: float) -> None:
-    """Contact and joint impulses for this step (changes ``world.vel`` and ``world.omega``)."""
-    relax(world, manifolds, dt)
+def solve_velocities(world, manifolds, dt: float, start=None) -> None:
+    """Contact and joint impulses for this step (changes ``world.vel`` and ``world.omega``);
+    ``start``: the velocities at the start of the step (see :func:`relax`)."""
+    relax(world, manifolds, dt, start)
 
 
 def solve_positions(world, manifolds, dt: float) -> None:

@@ -8,11 +8,14 @@ pushes its bodies back together. That is the "stacking problem": in a stack each
 down by the one above after its own contact with the box below was dealt with, so a stack
 sinks into itself.
 
-A point collides when it overlaps (depth >= 0) and approaches (v_r . n < 0). Restitution
-applies to approach speeds above ``settings.restitution_threshold``; friction is the simple
-Coulomb impulse that stops sliding, at most mu j. Step (4), the interpenetration fix, is
-``settings.penetration`` as for every solver (``position_iterations`` passes), so that the
-solvers differ only in how they handle velocities.
+A point collides when it overlaps (depth >= 0) and approaches (v_r . n < 0). The velocities
+already carry this step's gravity and forces; the bounce reflects only the approach velocity
+the bodies arrived with, v_a . n = v_r . n minus what gravity and forces added in this step, so
+that gravity's g dt is cancelled rather than bounced back (a bounce would otherwise gain
+height). Restitution applies to approach speeds -v_a . n above ``restitution_threshold``;
+friction is the simple Coulomb impulse that stops sliding, at most mu j. Step (4), the
+interpenetration fix, is ``settings.penetration`` as for every solver (``position_iterations``
+passes), so that the solvers differ only in how they handle velocities.
 """
 
 from __future__ import annotations
@@ -27,10 +30,15 @@ from sandbox.solvers.impulse import along, apply, collision_impulse, load, store
 
 @njit
 def resolve_each_once(
-    a, b, normal, count, friction, rest, r1, r2, kn, kt, sep0, pn, pt,
+    a, b, normal, count, friction, rest, r1, r2, kn, kt, sep0, dvn, pn, pt,
     vel, omega, inv_mass, inv_moment, threshold,
 ) -> None:  # fmt: skip
-    """Slides, "Collision Algorithm" steps (1)-(3) for every point, in order, once."""
+    """Slides, "Collision Algorithm" steps (1)-(3) for every point, in order, once.
+
+    ``dvn``: the part of v_r . n that this step's gravity and forces added (see
+    :func:`sandbox.solvers.impulse.prepare`). The impulse is the slides' j for the approach
+    velocity v_a . n = v_r . n - dvn, plus -dvn / k, which cancels gravity's part: afterwards
+    v_r . n = -e v_a . n."""
     v = np.empty(6)  # (v1x, v1y, w1, v2x, v2y, w2)
     for i in range(len(a)):
         ia, ib = a[i], b[i]
@@ -44,8 +52,9 @@ def resolve_each_once(
             vn = along(i, j, nx, ny, r1, r2, v)
             if vn >= 0.0:
                 continue  # separating: no collision
-            e = rest[i] if -vn > threshold else 0.0
-            jn = collision_impulse(e, vn, 1.0 / kn[i, j])  # (1)
+            va = vn - dvn[i, j]  # the approach velocity without this step's gravity and forces
+            e = rest[i] if -va > threshold else 0.0
+            jn = collision_impulse(e, va, 1.0 / kn[i, j]) - dvn[i, j] * kn[i, j]  # (1)
             apply(i, j, jn * nx, jn * ny, r1, r2, mass, v)  # (2), (3a), (3b): +j n to body 2
             # Coulomb friction: stop the sliding v_r . t, at most mu j
             limit = friction[i] * jn
@@ -55,10 +64,11 @@ def resolve_each_once(
         store(v, vel, omega, ia, ib)
 
 
-def solve_velocities(world, manifolds, dt: float) -> None:
-    """Each contact once, in turn; joints get ``settings.iterations`` passes first."""
+def solve_velocities(world, manifolds, dt: float, start=None) -> None:
+    """Each contact once, in turn; joints get ``settings.iterations`` passes first. ``start``:
+    the velocities at the start of the step (:func:`sandbox.solvers.impulse.start_velocities`)."""
     m = impulse.empty_manifolds(manifolds)
-    cons = impulse.build(world, m, dt)
+    cons = impulse.build(world, m, dt, start=start)
     if world.joints:
         impulse.prepare_joints(world, dt)
         for _ in range(world.settings.iterations):
@@ -66,8 +76,9 @@ def solve_velocities(world, manifolds, dt: float) -> None:
     if len(m):
         resolve_each_once(
             m.a, m.b, m.normal, m.count, m.friction, m.restitution, cons.r1, cons.r2, cons.kn,
-            cons.kt, cons.sep0, m.normal_impulse, m.tangent_impulse, world.vel, world.omega,
-            world.inv_mass, world.inv_moment, float(world.settings.restitution_threshold),
+            cons.kt, cons.sep0, cons.dvn, m.normal_impulse, m.tangent_impulse, world.vel,
+            world.omega, world.inv_mass, world.inv_moment,
+            float(world.settings.restitution_threshold),
         )  # fmt: skip
 
 

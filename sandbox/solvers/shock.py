@@ -111,11 +111,12 @@ def shock_pass(
         s = e
 
 
-def solve_velocities(world, manifolds, dt: float) -> None:
-    """Relaxation sweeps (contacts and joints) and restitution, then the shock pass."""
+def solve_velocities(world, manifolds, dt: float, start=None) -> None:
+    """Relaxation sweeps (contacts and joints) and restitution, then the shock pass. ``start``:
+    the velocities at the start of the step, for the bounces (see :func:`iterative.relax`)."""
     # the relaxation remembers its own impulses for warm starting: the shock pass's
     # one-sided pushes (still reported in the manifolds) would not balance in the next step
-    m = iterative.relax(world, manifolds, dt)
+    m = iterative.relax(world, manifolds, dt, start)
     if len(m):
         # lever arms and velocity targets of the contacts (positions only: the same as the
         # relaxation's)
