@@ -183,7 +183,6 @@ def phased_step(world, timer: Timer) -> None:
         if npairs <= cache.capacity:
             break
         cache.reserve(npairs)
-    timer.call("integration", _integrate_velocities, *vel_args)
     ints, geoms, solver = cache.rows(cur)
     old_ints, _, old_solver = cache.rows(old)
     k = timer.call(
@@ -195,6 +194,9 @@ def phased_step(world, timer: Timer) -> None:
             "prepare", prepare_rows, ints, geoms, solver, k, world.com, world.cs, world.vel,
             world.omega, world.inv_mass, world.inv_moment, 1.0 / dt, 0.0, float(s.slop),
         )  # fmt: skip
+    # as the compiled step: contacts are prepared on the step's starting velocities, then gravity
+    timer.call("integration", _integrate_velocities, *vel_args)
+    if k > 0:
         timer.call("warm start", match_rows, ints, solver, k, old_ints, old_solver, cache.k[old])
         timer.call("prepare", warm_start_rows, ints, solver, k, world.vel, world.omega)
         timer.call("velocity iterations", solve_rows, ints, solver, k, world.vel, world.omega,

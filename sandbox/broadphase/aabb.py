@@ -131,6 +131,13 @@ def swept_aabbs(aabb0: np.ndarray, aabb1: np.ndarray) -> np.ndarray:
     return out
 
 
+def check_tree_options(name: str, capacity: int, max_depth: int) -> tuple[int, int]:
+    """Leaf ``capacity`` (>= 1) and ``max_depth`` (>= 0) of the quadtree and kd-tree, as ints."""
+    if int(capacity) < 1 or int(max_depth) < 0:
+        raise ValueError(f"{name} needs capacity >= 1 and max_depth >= 0")
+    return int(capacity), int(max_depth)
+
+
 # ---- shared by the strategy kernels ----------------------------------------------------------
 # Each kernel spells out the same five lines per candidate pair (skip, count, record, test,
 # keep). Folding them into one inlined helper returning (k, tests) was measured to make the grid

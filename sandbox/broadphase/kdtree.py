@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox.broadphase.aabb import collect, overlap, put_pair, skip_pair
+from sandbox.broadphase.aabb import check_tree_options, collect, overlap, put_pair, skip_pair
 from sandbox.jit import njit
 
 CAPACITY = 8
@@ -256,12 +256,6 @@ def kdtree_kernel(
     return k, tests
 
 
-def _check(capacity: int, max_depth: int) -> tuple[int, int]:
-    if int(capacity) < 1 or int(max_depth) < 0:
-        raise ValueError("kdtree needs capacity >= 1 and max_depth >= 0")
-    return int(capacity), int(max_depth)
-
-
 def find(
     aabb: np.ndarray,
     static: np.ndarray,
@@ -271,14 +265,14 @@ def find(
     max_depth: int = MAX_DEPTH,
 ):
     """``(pairs, pair_tests, tested)`` with leaves of up to ``capacity`` boxes."""
-    capacity, max_depth = _check(capacity, max_depth)
+    capacity, max_depth = check_tree_options("kdtree", capacity, max_depth)
     return collect(kdtree_kernel, len(aabb), record, aabb, static, body, capacity, max_depth)
 
 
 def describe(aabb: np.ndarray, capacity: int = CAPACITY, max_depth: int = MAX_DEPTH) -> dict:
     """The tree for drawing: per node ``region`` (q, 4), split ``axis`` (-1 leaf) and ``split``
     coordinate, ``depth``, ``kept`` (boxes stored at the node), and ``node_of`` (m,) per box."""
-    capacity, max_depth = _check(capacity, max_depth)
+    capacity, max_depth = check_tree_options("kdtree", capacity, max_depth)
     idx, key, start, own, axis, line, split, wide, band, parent, depth, region = build_kdtree(
         aabb, capacity, max_depth
     )

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox.broadphase.aabb import collect, overlap, put_pair, skip_pair
+from sandbox.broadphase.aabb import check_tree_options, collect, overlap, put_pair, skip_pair
 from sandbox.jit import njit
 
 CAPACITY = 8
@@ -170,12 +170,6 @@ def quadtree_kernel(
     return k, tests
 
 
-def _check(capacity: int, max_depth: int) -> tuple[int, int]:
-    if int(capacity) < 1 or int(max_depth) < 0:
-        raise ValueError("quadtree needs capacity >= 1 and max_depth >= 0")
-    return int(capacity), int(max_depth)
-
-
 def find(
     aabb: np.ndarray,
     static: np.ndarray,
@@ -185,14 +179,14 @@ def find(
     max_depth: int = MAX_DEPTH,
 ):
     """``(pairs, pair_tests, tested)`` with leaves of up to ``capacity`` boxes."""
-    capacity, max_depth = _check(capacity, max_depth)
+    capacity, max_depth = check_tree_options("quadtree", capacity, max_depth)
     return collect(quadtree_kernel, len(aabb), record, aabb, static, body, capacity, max_depth)
 
 
 def describe(aabb: np.ndarray, capacity: int = CAPACITY, max_depth: int = MAX_DEPTH) -> dict:
     """The tree for drawing: node ``rects`` (q, 4) ``[x0, y0, x1, y1]``, ``depth``, ``leaf``
     flags and ``count`` (boxes stored per leaf; entries of split nodes are not used)."""
-    capacity, max_depth = _check(capacity, max_depth)
+    capacity, max_depth = check_tree_options("quadtree", capacity, max_depth)
     rect, depth, child, start, count, items = build_quadtree(aabb, capacity, max_depth)
     leaf = child < 0
     return {"rects": rect, "depth": depth, "leaf": leaf, "count": np.where(leaf, count, 0)}
