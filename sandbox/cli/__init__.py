@@ -1,0 +1,54 @@
+"""The command line: ``sandbox simulate | compare | lessons`` (also ``python -m sandbox``).
+
+One module per command (``sandbox/cli/<command>.py``, each with ``add_parser`` and ``run``);
+this one assembles the parser and turns every failure into one ``error:`` line.
+
+Bad input exits with status 2 and one line on stderr, ``error: <field path>: <what is wrong>``,
+and writes no output file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from sandbox.cli import compare, lessons, simulate
+from sandbox.cli.common import CliError, Parser
+
+COMMANDS = (simulate, compare, lessons)
+
+__all__ = ["CliError", "build_parser", "main"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``sandbox`` parser with every command."""
+    parser = Parser(prog="sandbox", description="A 2D physics sandbox for teaching.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    for command in COMMANDS:
+        command.add_parser(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point; returns the exit status (2 for bad input)."""
+    from sandbox.scene import SceneError
+
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+        return args.func(args)
+    except (CliError, SceneError) as err:
+        path = err.path or "scene"  # a problem with the whole document
+        print(f"error: {path}: {err.message}", file=sys.stderr)
+        return 2
+    except ValueError as err:  # a setting or value the world itself refused
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
