@@ -37,7 +37,7 @@ import numpy as np
 from sandbox import integrators, projectile
 from sandbox.body import Body
 from sandbox.geometry import box_vertices
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 from sandbox.recording import CircleOutline, Recording
 from sandbox.render import render_gif
 from sandbox.shapes import Circle
@@ -238,8 +238,7 @@ bx.set(xlabel="t (s)", ylabel=r"$p_{y,n} - p_y(t_n)$ (m)", title="Euler's lag gr
 bx.legend(fontsize=8)
 bx.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "analytic_vs_euler.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "analytic_vs_euler.png", dpi=100)
 
 # %% [markdown]
 # ## Error against the time step
@@ -368,8 +367,7 @@ ax.set(xlabel="x (m)", ylabel="y (m)", title=f"quadratic drag, c = {DRAG}, dt = 
 ax.legend(fontsize=7)
 ax.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "error_vs_dt.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "error_vs_dt.png", dpi=100)
 
 # %%
 for prob in ("quadratic drag", "spring"):

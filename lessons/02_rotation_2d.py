@@ -40,7 +40,7 @@ import numpy as np
 
 from sandbox import orientation
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 from sandbox.recording import record
 from sandbox.render import render_gif
 from sandbox.shapes import Box
@@ -348,8 +348,7 @@ for ax in axes:
     ax.axvline(SWITCH * DT, color="0.6", lw=0.8)
     ax.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "drift.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "drift.png", dpi=100)
 
 # %% [markdown]
 # ## Do the three agree?
@@ -518,8 +517,7 @@ for ax, data, unit, keys in (
 axes[0].set_title("Python: interpreter and numpy overhead dominate")
 axes[1].set_title("compiled: the arithmetic (cos + sin dominate)")
 fig.tight_layout()
-fig.savefig(OUT / "cost.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "cost.png", dpi=100)
 
 # %% [markdown]
 # ## The slides' comparison table, with numbers

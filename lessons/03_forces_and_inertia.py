@@ -34,7 +34,7 @@ from matplotlib.patches import Polygon as PolygonPatch
 
 from sandbox.body import Body
 from sandbox.geometry import box_vertices
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 from sandbox.mass import (
     box_mass_properties,
     center_of_mass,
@@ -127,8 +127,7 @@ bx.axhline(0.36, color="tab:red", ls=":", lw=1)
 bx.set(xlabel="axis position a (m)", ylabel="I(a) (kg m$^2$)", title="I(a) = 3a$^2$ - 2.4a + 0.72")
 bx.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "worked_examples.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "worked_examples.png", dpi=100)
 
 # %% [markdown]
 # ## Moments of the standard 2D shapes
@@ -211,8 +210,7 @@ bx.set_xticks(x, names, rotation=35, ha="right", fontsize=8)
 bx.set(ylabel="I about the centroid (kg m$^2$), m = 1 kg", title="same mass, different spread")
 bx.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "shape_moments.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "shape_moments.png", dpi=100)
 
 # %% [markdown]
 # ## f = m a and tau = r x f in the world
@@ -340,8 +338,7 @@ ax.plot(
 ax.set(xlabel="t (s)", ylabel=r"$\tau$ (N m)", title="torque about the centre of mass")
 ax.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "force_and_torque.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "force_and_torque.png", dpi=100)
 
 # %% [markdown]
 # The animation shows both runs overlaid, with $\omega(t)$ beside them: the two plates rise

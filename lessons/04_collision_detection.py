@@ -47,7 +47,7 @@ from matplotlib.patches import Circle as CirclePatch
 from matplotlib.patches import Polygon as PolygonPatch
 
 from sandbox import Body, Box, Circle, Polygon, World
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 
 # knobs
 SINK = 0.08  # m, how far the shapes of each case are pushed into each other
@@ -255,8 +255,7 @@ fig.suptitle(
     fontsize=10,
 )
 fig.tight_layout()
-fig.savefig(OUT / "manifolds.png", dpi=90)
-plt.close(fig)
+save_figure(fig, OUT / "manifolds.png", dpi=90)
 
 # %% [markdown]
 # What the panels show:

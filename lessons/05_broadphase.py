@@ -46,7 +46,7 @@ from matplotlib.colors import to_rgba
 from matplotlib.patches import Circle, Rectangle
 
 from sandbox.broadphase import STRATEGIES, describe, find_pairs, find_pairs_traced, shape_aabbs
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 
 # knobs
 SIZES = (10, 30, 100, 300, 1000, 3000, 10000)  # numbers of circles in the scaling study
@@ -146,8 +146,7 @@ ax.set_xlim(-0.1, 4.1)
 ax.set_ylim(-0.1, 3.1)
 ax.set_title(f"regular grid: {tests} of {n_slide * (n_slide - 1) // 2} pairs tested (red)")
 fig.tight_layout()
-fig.savefig(OUT / "slides_grid.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "slides_grid.png", dpi=100)
 
 # %% [markdown]
 # ## Cost against the number of bodies
@@ -240,8 +239,7 @@ axes[0].legend(fontsize=8)
 axes[0].set_title("pair tests")
 axes[1].set_title("time (best of several calls)")
 fig.tight_layout()
-fig.savefig(OUT / "scaling.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "scaling.png", dpi=100)
 
 # %% [markdown]
 # ## What each structure looks like
@@ -308,6 +306,5 @@ ax.set_xlabel("xy"[info["axis"]] + " (m)")
 ax.set_ylabel("rank in the sorted order")
 ax.set_title(f"sort and sweep on {'xy'[info['axis']]}: {counts['sap']} tests")
 fig.tight_layout()
-fig.savefig(OUT / "structures.png", dpi=90)
-plt.close(fig)
+save_figure(fig, OUT / "structures.png", dpi=90)
 print("figures written to", OUT.name)

@@ -45,7 +45,7 @@ from matplotlib.patches import Rectangle
 import sandbox
 from sandbox import Body, Box, Circle, World
 from sandbox.geometry import box_vertices
-from sandbox.lessonkit import output_dir, print_table, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
 from sandbox.render import record, render_gif
 from sandbox.toi import distance, time_of_impact
 
@@ -137,8 +137,7 @@ ax.annotate(
 )
 ax.legend(loc="lower right", fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "bullet_x.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "bullet_x.png", dpi=100)
 
 # %% [markdown]
 # ## Conservative advancement, one iteration at a time
@@ -231,8 +230,7 @@ for ax, (name, (p0, p1, rows, t_hand)) in zip(axes, results.items(), strict=True
     ax.legend(loc="lower left", fontsize=8)
 fig.suptitle("conservative advancement: each dotted circle is a region the wall is not in")
 fig.tight_layout()
-fig.savefig(OUT / "conservative_advancement.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "conservative_advancement.png", dpi=100)
 
 # %% [markdown]
 # ## When does a bullet tunnel?
@@ -382,8 +380,7 @@ bx.set(xlabel="bullet speed v (m/s)", ylabel="time step dt (s)", xlim=(2, 400), 
        title="tunnelling boundary (no ccd)")  # fmt: skip
 bx.legend(fontsize=8, loc="lower right")
 fig.tight_layout()
-fig.savefig(OUT / "tunnelling_boundary.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "tunnelling_boundary.png", dpi=100)
 
 # %% [markdown]
 # What the sweep shows:

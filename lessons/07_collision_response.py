@@ -38,7 +38,7 @@ import numpy as np
 
 import sandbox
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
 from sandbox.recording import record
 from sandbox.render import render_gif
 from sandbox.shapes import Box, Circle
@@ -142,8 +142,7 @@ bx.scatter(RESTITUTIONS, [d["apex"] for d in drops.values()], color="C3", zorder
 bx.set(xlabel="e", ylabel="apex (m)", title=f"h = {DROP_HEIGHT} m, dt = 1/{round(1 / DT)} s")
 bx.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "bounce_heights.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "bounce_heights.png", dpi=100)
 
 # %% [markdown]
 # **Where the remaining error comes from.** The measured $e$ equals the set one exactly: the
@@ -265,8 +264,7 @@ axes[2].set(xlabel="t (s)", ylabel="K (J)", title="kinetic energy: kept for e = 
 for ax in axes:
     ax.legend(fontsize=7)
 fig.tight_layout()
-fig.savefig(OUT / "head_on.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "head_on.png", dpi=100)
 
 # %% [markdown]
 # ## 3. Off-centre
@@ -338,8 +336,7 @@ axes[2].set(xlabel="t (s)", ylabel="K (J)", title="kinetic energy")
 for ax in axes:
     ax.legend(fontsize=7)
 fig.tight_layout()
-fig.savefig(OUT / "off_centre.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "off_centre.png", dpi=100)
 
 # %% [markdown]
 # ## 4. The collision equation by hand
@@ -527,8 +524,7 @@ cx.axhline(0, color="k", lw=0.8)
 cx.set_xticks(np.arange(4), labels)
 cx.set(ylabel="kinetic energy change (%)", title=f"K before = {K0:.3f} J, e = {e}")
 fig.tight_layout()
-fig.savefig(OUT / "sign_slips.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "sign_slips.png", dpi=100)
 
 # %% [markdown]
 # With the slide's $\mathbf{r}\times\boldsymbol{\omega}$ the engine would misjudge how fast the

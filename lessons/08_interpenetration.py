@@ -41,7 +41,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 from sandbox.recording import OutlineArrays, place, record
 from sandbox.render import render_gif
 from sandbox.shapes import Box
@@ -161,8 +161,7 @@ for ax in axes:
     ax.set(aspect="equal", xlim=(-1.2, 1.4), ylim=(-0.7, 1.9))
     ax.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "overlapping_boxes.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "overlapping_boxes.png", dpi=100)
 
 # %% [markdown]
 # ## A box pushed corner-first into the ground
@@ -244,8 +243,7 @@ for ax in axes.flat:
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "penetration.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "penetration.png", dpi=100)
 
 # %%
 runs = []

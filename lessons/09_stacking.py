@@ -46,7 +46,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import sandbox
-from sandbox.lessonkit import output_dir, print_table, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
 from sandbox.recording import Recording
 from sandbox.render import render_gif
 
@@ -128,8 +128,7 @@ for ax in axes.flat:
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "solvers.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "solvers.png", dpi=100)
 
 for scene, view in VIEWS.items():
     gif = render_gif(
@@ -222,8 +221,7 @@ bx.set_xticks(x, SHORT, fontsize=8)
 bx.set(ylabel="top drop after 5 s (m)", title="box2d-lite switches (iterative, 10 iterations)")
 bx.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "iterations_and_switches.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "iterations_and_switches.png", dpi=100)
 
 # %% [markdown]
 # - **warm starting** matters most for a tall stack: without it each step starts from zero

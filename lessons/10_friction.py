@@ -39,7 +39,7 @@ import numpy as np
 
 import sandbox
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
 from sandbox.recording import record
 from sandbox.render import render_gif
 from sandbox.shapes import Box
@@ -185,8 +185,7 @@ bx.set(xlabel="slope angle (deg)", ylabel="distance slid in 1 s (m)",
 bx.legend(fontsize=8)
 bx.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "incline.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "incline.png", dpi=100)
 
 # %%
 runs = []
@@ -260,5 +259,4 @@ bx.set(xlabel="t (s)", ylabel="v (m/s)", title="velocity: a straight line down t
 bx.legend(fontsize=8)
 bx.grid(alpha=0.3)
 fig.tight_layout()
-fig.savefig(OUT / "stopping.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "stopping.png", dpi=100)

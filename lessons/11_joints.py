@@ -34,7 +34,7 @@ import numpy as np
 
 from sandbox import Body, Box, Circle, World
 from sandbox.joints import PinJoint, PivotJoint
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -142,8 +142,7 @@ ax.plot(AMPLITUDES, np.array(measured) / T0, "o", color="C0", label="pin joint, 
 ax.set(xlabel=r"amplitude $\theta_0$ (deg)", ylabel="T / T0", title="pendulum period")
 ax.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "pendulum_period.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "pendulum_period.png", dpi=100)
 
 # %% [markdown]
 # The measured periods sit on the exact curve; the small-angle formula is 0.05% off at
@@ -194,8 +193,7 @@ for iterations, worst in drift_curves.items():
 ax.set(xlabel="t (s)", ylabel="worst anchor separation (mm)", title=f"{LINKS}-link chain")
 ax.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "chain_drift.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "chain_drift.png", dpi=100)
 
 # %% [markdown]
 # ## A hinge with limits, and a motor
@@ -259,8 +257,7 @@ bx.plot(t, np.array(torque) / MOTOR["max_torque"], color="C1", label=r"$\tau / \
 bx.set(xlabel="t (s)", title="motor: rate 2 rad/s, at most 10 N m")
 bx.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "hinge_and_motor.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "hinge_and_motor.png", dpi=100)
 
 # %% [markdown]
 # ## All four together

@@ -35,7 +35,7 @@ from sandbox import Body, Box, Circle, World
 from sandbox.buoyancy import box_draft, disc_draft
 from sandbox.forces import Buoyancy
 from sandbox.joints import SpringJoint
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 from sandbox.pymunk_bridge import PymunkScene
 from sandbox.recording import record
 from sandbox.render import render_gif
@@ -134,8 +134,7 @@ ax.plot(tt, -env, "k:", lw=1)
 ax.set(xlabel="t (s)", ylabel="x (m)", title="mass on a damped spring (semi-implicit Euler)")
 ax.legend(fontsize=7, ncol=2)
 fig.tight_layout()
-fig.savefig(OUT / "damped_spring.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "damped_spring.png", dpi=100)
 
 # %% [markdown]
 # RK4 follows the closed forms to a micrometre. The default semi-implicit Euler is a few
@@ -227,8 +226,7 @@ ax.axhline(-4.0 + 0.3, color="k", ls=":", lw=1, label="resting on the floor")
 ax.set(xlabel="t (s)", ylabel="y (m)", title=f"a stone of density {STONE} sinks")
 ax.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "sinking.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "sinking.png", dpi=100)
 
 gif = render_gif(rec, OUT / "floating.gif", fps=30, size_px=360, panel=HEIGHT)
 print(f"wrote {len(rec)} frames to {gif.name}")

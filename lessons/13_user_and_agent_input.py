@@ -37,7 +37,7 @@ import numpy as np
 from sandbox import Body, Box, Circle, World
 from sandbox.controllers import LanderController, Scripted, lander_thrusters
 from sandbox.forces import ConstantForce
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -122,8 +122,7 @@ for v in TARGET:
 bx.set(xlabel="t (s)", ylabel="m", title="the lander's path")
 bx.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "autopilot.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "autopilot.png", dpi=100)
 
 # %% [markdown]
 # At first both thrusters sit at their bound (a climb the formula wants faster than 5 N can
@@ -201,8 +200,7 @@ for rec, label in (
 ax.set(xlabel="t (s)", ylabel="distance to target (m)", yscale="log", title="feedback vs script")
 ax.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "feedback_vs_script.png", dpi=100)
-plt.close(fig)
+save_figure(fig, OUT / "feedback_vs_script.png", dpi=100)
 
 gif = render_gif(
     [windy_rec, script_rec],

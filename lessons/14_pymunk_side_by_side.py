@@ -41,7 +41,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from sandbox.compare import compare
-from sandbox.lessonkit import output_dir, print_table, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
 from sandbox.scene import read_scene_file, validate_scene
 
 # knobs
@@ -319,8 +319,7 @@ axes[0, 0].set_ylabel("max |p_sandbox - p_pymunk| (m)")
 axes[1, 0].set_ylabel("energy (J)")
 axes[1, 0].legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(OUT / "summary.png", dpi=80)
-plt.close(fig)
+save_figure(fig, OUT / "summary.png", dpi=80)
 print_table(["scene", "max dev (m)", "final dev (m)", "E sandbox (J)", "E pymunk (J)"], summary)
 print(f"figures and GIFs in {OUT}")
 

@@ -35,7 +35,7 @@ from PIL import Image
 from sandbox import inertia3d as inr
 from sandbox import rigid3d as rb
 from sandbox import rotation3d as r3
-from sandbox.lessonkit import output_dir, print_table
+from sandbox.lessonkit import output_dir, print_table, save_figure
 
 # knobs
 CUBOID = (1.0, 0.3, 0.2, 0.1)  # mass (kg), w, h, d (m): three different moments
@@ -274,8 +274,7 @@ for ax, axis in zip(axes, range(3), strict=True):
 axes[0].legend(loc="upper right", fontsize=8)
 axes[-1].set_xlabel("t (s)")
 fig.tight_layout()
-fig.savefig(OUT / "tennis_racket_omega.png", dpi=110)
-plt.close(fig)
+save_figure(fig, OUT / "tennis_racket_omega.png", dpi=110)
 headers = ["spin axis", "spin reversals", "measured T/2 (s)", "closed form T/2 (s)", "rel diff"]
 print_table(headers, rows, digits=4)
 
@@ -376,8 +375,7 @@ ax_l.set_ylabel("|L - L0| / |L0|")
 ax_l.set_xlabel("t (s)")
 ax_l.legend(fontsize=6, ncol=3, loc="lower right")
 fig.tight_layout()
-fig.savefig(OUT / "conservation.png", dpi=110)
-plt.close(fig)
+save_figure(fig, OUT / "conservation.png", dpi=110)
 print_table(["structure", "integrator", "max energy err", "max L err", "final drift"], rows)
 
 # %% [markdown]

@@ -11,7 +11,17 @@ from sandbox.settings import Settings
 from sandbox.shapes import Box, Circle, Polygon
 from sandbox.world import World
 
-__all__ = ["Body", "Box", "Circle", "Polygon", "SceneError", "Settings", "SimulationError", "World", "load_scene"]
+__all__ = [
+    "Body",
+    "Box",
+    "Circle",
+    "Polygon",
+    "SceneError",
+    "Settings",
+    "SimulationError",
+    "World",
+    "load_scene",
+]
 __version__ = "0.1.0"
 
 

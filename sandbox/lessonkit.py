@@ -35,6 +35,20 @@ def scene_path(name: str) -> Path:
     return repo_root() / "scenes" / name
 
 
+def save_figure(fig, path: str | os.PathLike, **savefig_kwargs) -> Path:
+    """Save a lesson's matplotlib figure to ``path`` (PNG) and close it; returns the path.
+
+    Every lesson figure goes through here, so that one place decides how a figure is shown
+    (a file for a script run) and checked.
+    """
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    fig.savefig(path, **savefig_kwargs)
+    plt.close(fig)
+    return path
+
+
 def format_table(headers: Sequence[str], rows: Sequence[Sequence[object]], digits: int = 4) -> str:
     """A plain-text table with right-aligned columns; floats printed with ``digits`` decimals."""
 
