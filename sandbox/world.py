@@ -75,6 +75,10 @@ class World:
         self.const_force = np.zeros((n, 2))
         self.const_torque = np.zeros(n)
         self.ccd = np.zeros(n, dtype=bool)
+        # what controllers, constant forces and apply_force/apply_torque applied in the last
+        # step (N, N m), for drawing force arrows; gravity and contact impulses not included
+        self.applied_force = np.zeros((n, 2))
+        self.applied_torque = np.zeros(n)
         self._dphi = np.zeros(n)  # scratch: each body's turn this step
 
     def _grow(self) -> int:
@@ -227,6 +231,8 @@ class World:
         if self._has_constant:
             self.force += self.const_force
             self.torque += self.const_torque
+        self.applied_force[:] = self.force
+        self.applied_torque[:] = self.torque
         integrator = self.settings.integrator
         if integrator == "analytic":
             self._step_analytic(dt)
