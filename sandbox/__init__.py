@@ -9,6 +9,7 @@ from sandbox.body import Body
 from sandbox.errors import SimulationError
 from sandbox.settings import Settings
 from sandbox.shapes import Box, Circle, Polygon
+from sandbox.vec2 import Vec2
 from sandbox.world import World
 
 __all__ = [
@@ -19,6 +20,7 @@ __all__ = [
     "SceneError",
     "Settings",
     "SimulationError",
+    "Vec2",
     "World",
     "load_scene",
 ]

@@ -12,6 +12,8 @@ import math
 
 import numpy as np
 
+from sandbox.vec2 import Vec2
+
 DYNAMIC, STATIC, KINEMATIC = 0, 1, 2
 TYPES = {"dynamic": DYNAMIC, "static": STATIC, "kinematic": KINEMATIC}
 TYPE_NAMES = {v: k for k, v in TYPES.items()}
@@ -138,14 +140,14 @@ class Body:
         return TYPES[self.type]
 
     @property
-    def position(self) -> tuple[float, float]:
+    def position(self) -> Vec2:
         """World position of the body origin (m)."""
         if self.world is None:
-            return tuple(self._init["position"])
+            return Vec2(*self._init["position"])
         w, i = self.world, self.index
         c, s = w.cs[i]
         lc = w.local_com[i]
-        return (
+        return Vec2(
             float(w.com[i, 0] - (c * lc[0] - s * lc[1])),
             float(w.com[i, 1] - (s * lc[0] + c * lc[1])),
         )
@@ -160,10 +162,10 @@ class Body:
         w._state_changed()
 
     @property
-    def center_of_mass(self) -> tuple[float, float]:
+    def center_of_mass(self) -> Vec2:
         """World position of the centre of mass (m)."""
         w = self._w()
-        return (float(w.com[self.index, 0]), float(w.com[self.index, 1]))
+        return Vec2(float(w.com[self.index, 0]), float(w.com[self.index, 1]))
 
     @property
     def angle(self) -> float:
@@ -182,12 +184,12 @@ class Body:
         self.position = origin
 
     @property
-    def velocity(self) -> tuple[float, float]:
+    def velocity(self) -> Vec2:
         """Velocity of the centre of mass (m/s)."""
         if self.world is None:
-            return tuple(self._init["velocity"])
+            return Vec2(*self._init["velocity"])
         v = self.world.vel[self.index]
-        return (float(v[0]), float(v[1]))
+        return Vec2(float(v[0]), float(v[1]))
 
     @velocity.setter
     def velocity(self, value) -> None:
@@ -231,23 +233,23 @@ class Body:
         return self._init["ccd"] if self.world is None else bool(self.world.ccd[self.index])
 
     # --- frames -------------------------------------------------------------------------------
-    def world_point(self, local) -> np.ndarray:
+    def world_point(self, local) -> Vec2:
         """Body-frame point (about the origin) to world coordinates (m)."""
         c, s = math.cos(self.angle), math.sin(self.angle)
-        return np.asarray(self.position) + _rot(c, s, local)
+        return Vec2(*(np.asarray(self.position) + _rot(c, s, local)))
 
-    def local_point(self, point) -> np.ndarray:
+    def local_point(self, point) -> Vec2:
         """World point to the body frame (about the origin)."""
         c, s = math.cos(self.angle), math.sin(self.angle)
         d = np.asarray(point, dtype=float) - np.asarray(self.position)
-        return _rot(c, -s, d)
+        return Vec2(*_rot(c, -s, d))
 
-    def velocity_at(self, point) -> np.ndarray:
+    def velocity_at(self, point) -> Vec2:
         """Velocity of the material point at world ``point``: v + omega x r (m/s)."""
         w = self._w()
         r = np.asarray(point, dtype=float) - w.com[self.index]
         om = w.omega[self.index]
-        return w.vel[self.index] + om * np.array([-r[1], r[0]])
+        return Vec2(*(w.vel[self.index] + om * np.array([-r[1], r[0]])))
 
     # --- forces -------------------------------------------------------------------------------
     def apply_force(self, force, point=None) -> None:
