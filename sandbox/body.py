@@ -19,6 +19,13 @@ TYPES = {"dynamic": DYNAMIC, "static": STATIC, "kinematic": KINEMATIC}
 TYPE_NAMES = {v: k for k, v in TYPES.items()}
 
 
+def _checked(name: str, value):
+    """``value`` checked as the body field ``name`` (the scene files' rules; SceneError)."""
+    from sandbox.arguments import check_arguments
+
+    return check_arguments("Body", "body", {name: value})[name]
+
+
 def _rot(c: float, s: float, v) -> np.ndarray:
     return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
 
@@ -44,8 +51,25 @@ class Body:
         force=(0.0, 0.0),
         torque: float = 0.0,
     ) -> None:
-        if type not in TYPES:
-            raise ValueError(f"type: expected one of {sorted(TYPES)}, got {type!r}")
+        from sandbox.arguments import check_arguments, check_body_name
+
+        check_body_name(name, type)
+        check_arguments(
+            "Body",
+            "body",
+            {
+                "type": type,
+                "position": position,
+                "angle": angle,
+                "velocity": velocity,
+                "angular_velocity": angular_velocity,
+                "mass": mass,
+                "moment": moment,
+                "ccd": ccd,
+                "force": force,
+                "torque": torque,
+            },
+        )
         self.name = name
         self.type = type
         self.shapes: list = []
@@ -108,6 +132,7 @@ class Body:
 
     @constant_force.setter
     def constant_force(self, value) -> None:
+        value = _checked("force", value)
         if self.world is None:
             self._constant = (np.array(value, dtype=float), self._constant[1])
         else:
@@ -123,6 +148,7 @@ class Body:
 
     @constant_torque.setter
     def constant_torque(self, value: float) -> None:
+        value = _checked("torque", value)
         if self.world is None:
             self._constant = (self._constant[0], float(value))
         else:
@@ -154,6 +180,9 @@ class Body:
 
     @position.setter
     def position(self, value) -> None:
+        self._place(_checked("position", value))
+
+    def _place(self, value) -> None:
         if self.world is None:
             self._init["position"] = np.array(value, dtype=float)
             return
@@ -176,12 +205,13 @@ class Body:
 
     @angle.setter
     def angle(self, value: float) -> None:
+        value = _checked("angle", value)
         if self.world is None:
             self._init["angle"] = float(value)
             return
         origin = self.position
         self.world._set_angle(self.index, float(value))
-        self.position = origin
+        self._place(origin)
 
     @property
     def velocity(self) -> Vec2:
@@ -193,6 +223,7 @@ class Body:
 
     @velocity.setter
     def velocity(self, value) -> None:
+        value = _checked("velocity", value)
         if self.world is None:
             self._init["velocity"] = np.array(value, dtype=float)
         else:
@@ -208,6 +239,7 @@ class Body:
 
     @angular_velocity.setter
     def angular_velocity(self, value: float) -> None:
+        value = _checked("angular_velocity", value)
         if self.world is None:
             self._init["angular_velocity"] = float(value)
         else:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from sandbox.body import Body
-from sandbox.settings import SCENE_KEYS
 from sandbox.shapes import shape_from_dict, shape_to_dict
 from sandbox.world import World
 
@@ -14,7 +13,7 @@ def build_world(spec: dict) -> World:
         gravity=spec["gravity"],
         dt=spec["dt"],
         name=spec.get("name", "scene"),
-        **{k: spec["settings"][k] for k in SCENE_KEYS},
+        **spec["settings"],  # the contract keys and any other setting the scene gives
     )
     for b in spec["bodies"]:
         body = Body(
@@ -75,7 +74,7 @@ def world_to_scene(world: World) -> dict:
         "name": world.name,
         "gravity": world.gravity.tolist(),
         "dt": world.dt,
-        "settings": world.settings.scene_dict(),
+        "settings": world.settings.scene_dict(),  # contract keys + settings not at default
         "bodies": bodies,
         "joints": [j.to_dict() for j in world.joints],
         "forces": [f.to_dict() for f in world.forces],
