@@ -7,7 +7,7 @@ import sys
 
 EXAMPLES = """examples:
   sandbox schema > scene.schema.json
-  then start a scene file with  "$schema": "scene.schema.json"  for completion in an editor
+  # then begin a scene with "$schema": "scene.schema.json" for completion in an editor
 """
 
 
