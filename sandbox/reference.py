@@ -158,6 +158,8 @@ _SENTENCE_END = re.compile(r"(?<!e\.g)(?<!i\.e)\.\s+(?=[A-Z])")
 def _first_sentence(text: str, limit: int = 170) -> str:
     """The first sentence of ``text``, cut at a clause boundary when longer than ``limit``."""
     sentence = _SENTENCE_END.split(text, maxsplit=1)[0].rstrip(".")
+    if "$" in sentence:  # no formulas in a one-line summary: stop before the first
+        limit = min(limit, sentence.index("$"))
     if len(sentence) > limit:
         cut = max(sentence.rfind(";", 0, limit), sentence.rfind(",", 0, limit))
         sentence = sentence[: cut if cut > 40 else limit].rstrip() + " ..."
