@@ -106,3 +106,17 @@ def test_schema_command_prints_the_shipped_schema(capsys):
     printed = capsys.readouterr().out
     assert json.loads(printed) == scene_schema()
     assert printed == shipped_schema_text()  # the packaged file is the generated one
+
+
+def test_a_refused_pymunk_run_is_one_error_line_without_the_note(tmp_path, monkeypatch, capsys):
+    from sandbox import pymunk_bridge
+
+    def refuse(spec, steps, dt=None):
+        raise pymunk_bridge.BridgeError("forces[0]", "pymunk has no such force")
+
+    monkeypatch.setattr(pymunk_bridge, "run_pymunk", refuse)
+    out = tmp_path / "p.csv"
+    args = ["simulate", str(DROP), "--engine", "pymunk", "--set", "warm_start=false"]
+    assert main([*args, "--trace", str(out)]) == 2
+    assert capsys.readouterr().err == "error: forces[0]: pymunk has no such force\n"
+    assert not out.exists()

@@ -104,11 +104,10 @@ def run(args: argparse.Namespace) -> int:
     if args.engine == "pymunk":
         from sandbox.pymunk_bridge import run_pymunk
 
-        note = pymunk_note(spec)
+        rows = run_pymunk(spec, args.steps, spec["dt"])
+        note = pymunk_note(spec)  # after the run: a scene pymunk cannot express is one error line
         if note:
             print(note, file=sys.stderr)
-
-        rows = run_pymunk(spec, args.steps, spec["dt"])
     else:
         from sandbox.trace import run_world
 
