@@ -83,9 +83,17 @@ def _bound(x: float) -> str:
     return repr(x)
 
 
-def _number(value: Any, path: str, *, gt: float | None = None, ge: float | None = None,
-            le: float | None = None, lo: float | None = None, hi: float | None = None,
-            unit: str = "") -> float:  # fmt: skip
+def _number(
+    value: Any,
+    path: str,
+    *,
+    gt: float | None = None,
+    ge: float | None = None,
+    le: float | None = None,
+    lo: float | None = None,
+    hi: float | None = None,
+    unit: str = "",
+) -> float:
     """A finite int or float (never a bool) within the given bounds, as a float.
 
     ``gt`` / ``ge`` / ``le`` are the sign rule (a length is > 0); ``[lo, hi]`` (in ``unit``) the

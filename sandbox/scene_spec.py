@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from sandbox import fieldspec as fs
+import sandbox.fieldspec as fs
 from sandbox.fieldspec import REQUIRED, Field, Range, number, vector
 from sandbox.settings import Settings
 
@@ -63,13 +63,18 @@ SCENE = ObjectSpec(
         Field("name", "string", "the scene's name (titles, file names)", "scene"),
         vector("gravity", "acceleration of gravity", fs.GRAVITY, (0.0, -9.81)),
         _positive("dt", "time step", fs.TIME_STEP, 1.0 / 60.0),
-        Field("settings", "object", "world settings (strategies and solver switches)", {},
-              item="settings"),
+        Field(
+            "settings",
+            "object",
+            "world settings (strategies and solver switches)",
+            {},
+            item="settings",
+        ),
         Field("bodies", "list", "the rigid bodies, in order", REQUIRED, item="body"),
         Field("joints", "list", "joints between two bodies", (), item="joint"),
         Field("forces", "list", "force generators (drag, buoyancy, constant)", (), item="force"),
     ),
-)  # fmt: skip
+)
 
 SETTINGS = ObjectSpec(
     "settings",
@@ -90,25 +95,46 @@ BODY = ObjectSpec(
         vector("velocity", "velocity of the centre of mass", fs.VELOCITY, (0.0, 0.0)),
         number("angular_velocity", "counter-clockwise", fs.ANGULAR_VELOCITY, 0.0),
         Field("ccd", "boolean", "continuous collision for this body (no tunnelling)", False),
-        _positive("mass", "overrides the shapes' mass (null: from the shapes)", fs.MASS, None,
-                  nullable=True),
-        _positive("moment", "moment of inertia about the centre of mass (null: from the shapes)",
-                  fs.MOMENT, None, nullable=True),
+        _positive(
+            "mass",
+            "overrides the shapes' mass (null: from the shapes)",
+            fs.MASS,
+            None,
+            nullable=True,
+        ),
+        _positive(
+            "moment",
+            "moment of inertia about the centre of mass (null: from the shapes)",
+            fs.MOMENT,
+            None,
+            nullable=True,
+        ),
         vector("force", "constant force at the centre of mass", fs.FORCE, (0.0, 0.0)),
         number("torque", "constant torque", fs.TORQUE, 0.0),
-        Field("shapes", "list", "collision shapes; a dynamic body needs one, or mass and moment",
-              (), item="shape"),
+        Field(
+            "shapes",
+            "list",
+            "collision shapes; a dynamic body needs one, or mass and moment",
+            (),
+            item="shape",
+        ),
     ),
-)  # fmt: skip
+)
 
 _MATERIAL = (
     _positive("density", "mass per area (2D)", fs.DENSITY, 1.0),
-    _positive("mass", "the shape's mass, instead of density (null: from density)", fs.MASS, None,
-              nullable=True),
+    _positive(
+        "mass",
+        "the shape's mass, instead of density (null: from density)",
+        fs.MASS,
+        None,
+        nullable=True,
+    ),
     number("restitution", "bounciness; a contact uses the product of the two", fs.RATIO, 0.0),
-    _nonneg("friction", "Coulomb friction; a contact uses the product of the two", fs.FRICTION,
-            0.5),
-)  # fmt: skip
+    _nonneg(
+        "friction", "Coulomb friction; a contact uses the product of the two", fs.FRICTION, 0.5
+    ),
+)
 _SHAPE_TYPES = ("circle", "polygon", "box")
 _OFFSET = vector("offset", "centre in the body frame", fs.LOCAL, (0.0, 0.0))
 
@@ -129,11 +155,18 @@ POLYGON = ObjectSpec(
     "a convex polygon",
     (
         _tag(_SHAPE_TYPES, "polygon"),
-        Field("vertices", "vertices", "[x, y] corners in the body frame, convex, either winding",
-              REQUIRED, fs.LOCAL.unit, lo=fs.LOCAL.lo, hi=fs.LOCAL.hi),
+        Field(
+            "vertices",
+            "vertices",
+            "[x, y] corners in the body frame, convex, either winding",
+            REQUIRED,
+            fs.LOCAL.unit,
+            lo=fs.LOCAL.lo,
+            hi=fs.LOCAL.hi,
+        ),
         *_MATERIAL,
     ),
-)  # fmt: skip
+)
 BOX = ObjectSpec(
     "box",
     "a shape",
@@ -168,22 +201,35 @@ PIVOT = ObjectSpec(
     (
         _tag(_JOINT_TYPES, "pivot"),
         *_ANCHORS,
-        Field("limits", "limits", "[lo, hi] on angle_b - angle_a (null: free)", None, "rad",
-              lo=fs.ANGLE.lo, hi=fs.ANGLE.hi, nullable=True),
-        Field("motor", "object", "drives angular_velocity_b - angular_velocity_a (null: none)",
-              None, nullable=True, item="motor"),
+        Field(
+            "limits",
+            "limits",
+            "[lo, hi] on angle_b - angle_a (null: free)",
+            None,
+            "rad",
+            lo=fs.ANGLE.lo,
+            hi=fs.ANGLE.hi,
+            nullable=True,
+        ),
+        Field(
+            "motor",
+            "object",
+            "drives angular_velocity_b - angular_velocity_a (null: none)",
+            None,
+            nullable=True,
+            item="motor",
+        ),
     ),
-)  # fmt: skip
+)
 MOTOR = ObjectSpec(
     "motor",
     "a motor",
     "a pivot's motor",
     (
         number("rate", "target of angular_velocity_b - angular_velocity_a", fs.ANGULAR_VELOCITY),
-        number("max_torque", "the most torque it applies", Range(0.0, fs.TORQUE.hi, "N m"),
-               gt=0.0),
+        number("max_torque", "the most torque it applies", Range(0.0, fs.TORQUE.hi, "N m"), gt=0.0),
     ),
-)  # fmt: skip
+)
 SPRING = ObjectSpec(
     "spring",
     "a joint",
@@ -191,17 +237,26 @@ SPRING = ObjectSpec(
     (
         _tag(_JOINT_TYPES, "spring"),
         *_ANCHORS,
-        _nonneg("rest_length", "length without tension (null: the initial distance)",
-                Range(0.0, fs.LOCAL.hi, "m"), None, nullable=True),
+        _nonneg(
+            "rest_length",
+            "length without tension (null: the initial distance)",
+            Range(0.0, fs.LOCAL.hi, "m"),
+            None,
+            nullable=True,
+        ),
         _nonneg("stiffness", "spring constant k", fs.STIFFNESS),
-        _nonneg("damping", "damping constant c (force along the spring per m/s)", fs.DAMPING,
-                0.0),
+        _nonneg("damping", "damping constant c (force along the spring per m/s)", fs.DAMPING, 0.0),
     ),
-)  # fmt: skip
+)
 
 _FORCE_TYPES = ("drag", "buoyancy", "constant")
-_BODIES = Field("bodies", "bodies", "the bodies it acts on, by name (null: every dynamic body)",
-                None, nullable=True)  # fmt: skip
+_BODIES = Field(
+    "bodies",
+    "bodies",
+    "the bodies it acts on, by name (null: every dynamic body)",
+    None,
+    nullable=True,
+)
 _FLUID_DRAG = Range(0.0, 1e12, "N s/m^3")
 DRAG = ObjectSpec(
     "drag",
@@ -236,17 +291,35 @@ CONSTANT = ObjectSpec(
         _tag(_FORCE_TYPES, "constant"),
         vector("force", "the force", fs.FORCE, (0.0, 0.0)),
         number("torque", "the torque", fs.TORQUE, 0.0),
-        vector("point", "where it acts, body frame (null: the centre of mass)", fs.LOCAL, None,
-               nullable=True),
+        vector(
+            "point",
+            "where it acts, body frame (null: the centre of mass)",
+            fs.LOCAL,
+            None,
+            nullable=True,
+        ),
         _BODIES,
     ),
-)  # fmt: skip
+)
 
 OBJECTS: dict[str, ObjectSpec] = {
     spec.name: spec
-    for spec in (SCENE, SETTINGS, BODY, CIRCLE, POLYGON, BOX, PIN, PIVOT, MOTOR, SPRING, DRAG,
-                 BUOYANCY, CONSTANT)
-}  # fmt: skip
+    for spec in (
+        SCENE,
+        SETTINGS,
+        BODY,
+        CIRCLE,
+        POLYGON,
+        BOX,
+        PIN,
+        PIVOT,
+        MOTOR,
+        SPRING,
+        DRAG,
+        BUOYANCY,
+        CONSTANT,
+    )
+}
 # lists whose items are one of several objects, told apart by their "type"
 UNIONS: dict[str, tuple[str, ...]] = {
     "shape": _SHAPE_TYPES,

@@ -71,8 +71,9 @@ def validate_object(name: str, values: dict, path: str = "") -> dict:
 def _field(raw: dict, path: str, field: Field, ctx: dict) -> Any:
     if field.kind == "object" and field.name not in raw and field.default == {}:
         raw = {**raw, field.name: {}}  # a missing object is an empty one: its own defaults
-    return _get(raw, path, field.name, _check, field.default, nullable=field.nullable,
-                field=field, ctx=ctx)  # fmt: skip
+    return _get(
+        raw, path, field.name, _check, field.default, nullable=field.nullable, field=field, ctx=ctx
+    )
 
 
 def _check(value: Any, path: str, field: Field, ctx: dict) -> Any:

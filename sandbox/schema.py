@@ -90,9 +90,11 @@ def _object(name: str, tag: str | None = None) -> dict:
     spec = OBJECTS[name]
     props = {}
     for f in spec.fields:
-        props[f.name] = {"const": tag, "description": "the kind"} if f.name == "type" and tag else (
-            _property(f)
-        )  # fmt: skip
+        props[f.name] = (
+            {"const": tag, "description": "the kind"}
+            if f.name == "type" and tag
+            else (_property(f))
+        )
     required = [f.name for f in spec.fields if f.required]
     out = {
         "description": spec.doc,

@@ -115,9 +115,12 @@ class Settings:
         3, "integer", "passes of the position-level overlap fix per step", Range(0, 1000)
     )
     slop: float = _setting(
-        0.005, "number", "overlap allowed before position correction acts", Range(0.0, 1.0, "m"),
+        0.005,
+        "number",
+        "overlap allowed before position correction acts",
+        Range(0.0, 1.0, "m"),
         ge=0.0,
-    )  # fmt: skip
+    )
     baumgarte: float = _setting(
         0.2, "number", "fraction of the remaining overlap removed per step", Range(0.0, 1.0)
     )
@@ -125,9 +128,12 @@ class Settings:
         1.0, "number", "impacts slower than this do not bounce", Range(0.0, 1e3, "m/s"), ge=0.0
     )
     contact_margin: float = _setting(
-        0.02, "number", "contacts are created this far before shapes touch", Range(0.0, 1.0, "m"),
+        0.02,
+        "number",
+        "contacts are created this far before shapes touch",
+        Range(0.0, 1.0, "m"),
         ge=0.0,
-    )  # fmt: skip
+    )
     sleep: bool = _setting(
         False, "boolean", "let bodies that have come to rest sleep until something touches them"
     )

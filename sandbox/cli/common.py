@@ -95,8 +95,16 @@ def field_type(field: Field, option: str):
 # the command line's own numbers, with their ranges (the scene's dt is the scene field's)
 STEPS = Field("steps", "integer", "number of steps", 300, "", lo=0, hi=10_000_000)
 FPS = Field("fps", "number", "GIF frames per second", 30.0, "frames/s", gt=0.0, lo=0.1, hi=100)
-DT = Field("dt", "number", "time step (default: the scene's)", None, "s", gt=0.0,
-           lo=TIME_STEP.lo, hi=TIME_STEP.hi)  # fmt: skip
+DT = Field(
+    "dt",
+    "number",
+    "time step (default: the scene's)",
+    None,
+    "s",
+    gt=0.0,
+    lo=TIME_STEP.lo,
+    hi=TIME_STEP.hi,
+)
 
 
 def add_settings_options(parser: argparse.ArgumentParser) -> None:

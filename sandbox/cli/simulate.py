@@ -84,7 +84,7 @@ def pymunk_note(spec: dict) -> str | None:
     return (
         f"note: pymunk cannot honour {', '.join(ignored)} "
         "(the bridge uses only iterations, dt and gravity); they apply to --engine sandbox"
-    )  # fmt: skip
+    )
 
 
 def run(args: argparse.Namespace) -> int:
