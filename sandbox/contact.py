@@ -59,13 +59,15 @@ class ContactBuffers:
         self.pairs = np.zeros((2, capacity, 2), dtype=np.int64)
         self.capacity = capacity
 
-    def release(self, s: int) -> None:
-        """Set ``s`` is about to be written: views of it still held get copies of their own."""
+    def release(self, s: int) -> bool:
+        """Set ``s`` is about to be written: views of it still held get copies of their own.
+        Returns whether a view of the other set may still be held."""
         ref = self._views[s]
         view = ref() if ref is not None else None
         if view is not None:
             view.detach()
         self._views[s] = None
+        return self._views[1 - s] is not None
 
     def manifolds(self, ctx) -> Manifolds:
         """The last step's manifolds (``ctx``: the world's step context), as a view."""
