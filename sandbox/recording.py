@@ -16,12 +16,13 @@ list of ``fluids``: the surface heights (m) of the world's buoyancy generators.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import numpy as np
 
+from sandbox.energy import WorkMeter, energy_terms
 from sandbox.outlines import (  # noqa: F401 (re-exported: lessons import them from here)
     CircleOutline,
     Outline,
@@ -31,6 +32,7 @@ from sandbox.outlines import (  # noqa: F401 (re-exported: lessons import them f
     shape_outline,
     zigzag,
 )
+from sandbox.overlays import Overlays, parse_layers
 
 BODY_TYPES = ("dynamic", "static", "kinematic")
 JOINT_KINDS = ("pin", "pivot", "spring")  # drawn as: a line, a dot, a zig-zag
@@ -103,6 +105,9 @@ class Recording:
     ``(J, 2, 2)`` array of their world anchor points ``[[xa, ya], [xb, yb]]`` at frame ``k``
     (computed from the poses when not given). ``fluids`` are water surface heights (m): the
     water fills everything below each.
+
+    ``overlays`` (:class:`~sandbox.overlays.Overlays`) hold what the debug-drawing layers need
+    per frame (contacts, velocities, forces), recorded only for the layers asked for.
     """
 
     names: list[str]
@@ -114,6 +119,7 @@ class Recording:
     joints: list[JointOutline] = field(default_factory=list)
     joint_frames: list[np.ndarray] = field(default_factory=list)
     fluids: list[float] = field(default_factory=list)
+    overlays: Overlays = field(default_factory=Overlays)
 
     def __post_init__(self) -> None:
         n = len(self.names)
@@ -134,6 +140,7 @@ class Recording:
             self.joint_frames = [self.joint_points(p) for p in self.frames]
         if len(self.joint_frames) != len(self.frames):
             raise ValueError("joint_frames must have one entry per frame")
+        self.overlays.check(len(self.frames))
 
     @property
     def n_bodies(self) -> int:
@@ -144,9 +151,16 @@ class Recording:
         return len(self.frames)
 
     @classmethod
-    def from_world(cls, world: Any) -> Recording:
-        """The geometry of ``world``'s bodies (names, types, outlines), with no frame yet."""
+    def from_world(cls, world: Any, draw: str | Iterable[str] | None = ()) -> Recording:
+        """The geometry of ``world``'s bodies (names, types, outlines), with no frame yet.
+
+        ``draw``: the debug-drawing layers whose data :meth:`capture` will record.
+        """
         bodies = list(world.bodies)
+        if hasattr(world, "local_com"):
+            overlays = Overlays.for_world(world, draw)
+        else:  # a stand-in without the engine's arrays: only layers drawn from the geometry
+            overlays = Overlays(layers=parse_layers(draw))
         index = {id(b): i for i, b in enumerate(bodies)}
         return cls(
             names=[str(b.name) for b in bodies],
@@ -158,6 +172,7 @@ class Recording:
                 for f in getattr(world, "forces", ())
                 if getattr(f, "type", None) == "buoyancy"
             ],
+            overlays=overlays,
         )
 
     def joint_points(self, poses: np.ndarray) -> np.ndarray:
@@ -172,12 +187,18 @@ class Recording:
         return place(local, body, np.asarray(poses, dtype=float)).reshape(-1, 2, 2)
 
     def add_frame(
-        self, poses: np.ndarray, time: float, joints: np.ndarray | None = None, **values: float
+        self,
+        poses: np.ndarray,
+        time: float,
+        joints: np.ndarray | None = None,
+        overlay: Mapping[str, Any] | None = None,
+        **values: float,
     ) -> None:
         """Append one frame: ``poses`` (n, 3) ``[x, y, angle]``, ``time`` (s), series values.
 
         ``joints``: the joints' world anchor points ``(J, 2, 2)`` (m); default: placed from
-        ``poses``.
+        ``poses``. ``overlay``: the frame's data for the recorded layers (see
+        :meth:`sandbox.overlays.Overlays.add`, e.g. ``{"velocities": v}``).
         """
         poses = np.array(poses, dtype=float)
         if poses.shape != (self.n_bodies, 3):
@@ -189,6 +210,8 @@ class Recording:
             raise ValueError(
                 f"a frame's joints must be ({len(self.joints)}, 2, 2), got {joints.shape}"
             )
+        if self.overlays.recorded:
+            self.overlays.add(self.n_bodies, overlay or {})
         k = len(self.frames)
         self.frames.append(poses)
         self.joint_frames.append(joints)
@@ -206,7 +229,8 @@ class Recording:
         poses = np.array(
             [(b.position[0], b.position[1], b.angle) for b in world.bodies], dtype=float
         ).reshape(-1, 3)
-        self.add_frame(poses, world.time, self.joint_points(poses), **values)
+        overlay = self.overlays.frame_data(world) if self.overlays.recorded else None
+        self.add_frame(poses, world.time, self.joint_points(poses), overlay, **values)
 
     def poses(self) -> np.ndarray:
         """All frames stacked: ``(F, n, 3)``."""
@@ -221,28 +245,64 @@ class Recording:
         return np.stack(self.joint_frames)
 
 
+class Recorder:
+    """Records a world while it runs: call :meth:`step_done` after each ``world.step()``.
+
+    Captures the state when made, then every ``every`` steps: poses, ``series`` values, the data
+    of the layers ``draw`` and, with ``energy``, the energy by part and the work done
+    (:mod:`sandbox.energy`, measured over every step) as the series ``ENERGY_SERIES``.
+    """
+
+    def __init__(
+        self,
+        world: Any,
+        every: int = 1,
+        series: Mapping[str, Callable[[Any], float]] | None = None,
+        draw: str | Iterable[str] | None = (),
+        energy: bool = False,
+    ) -> None:
+        if every < 1:
+            raise ValueError(f"need every >= 1, got every={every}")
+        self.world, self.every, self.steps = world, int(every), 0
+        self.series = dict(series or {})
+        self.meter = WorkMeter(world) if energy else None
+        self.recording = Recording.from_world(world, draw)
+        self.capture()
+
+    def capture(self) -> None:
+        values = {name: fn(self.world) for name, fn in self.series.items()}
+        if self.meter is not None:
+            values.update(energy_terms(self.world), **{"energy.work": self.meter.work})
+        self.recording.capture(self.world, **values)
+
+    def step_done(self, world: Any = None) -> None:
+        if self.meter is not None:
+            self.meter.after()
+        self.steps += 1
+        if self.steps % self.every == 0:
+            self.capture()
+
+
 def record(
     world: Any,
     steps: int,
     every: int = 1,
     series: Mapping[str, Callable[[Any], float]] | None = None,
+    draw: str | Iterable[str] | None = (),
+    energy: bool = False,
 ) -> Recording:
     """Step ``world`` ``steps`` times, capturing the initial state and then every ``every`` steps.
 
     ``series`` maps a name to a function ``world -> float`` evaluated at each captured frame,
-    e.g. ``{"energy": lambda w: w.kinetic_energy() + w.potential_energy()}``.
+    e.g. ``{"energy": lambda w: w.kinetic_energy() + w.potential_energy()}``. ``draw`` names the
+    debug-drawing layers to record data for (``"contacts,impulses"`` or a list; see
+    :mod:`sandbox.overlays`); ``energy=True`` records the energies the ``"energy-bars"`` panel
+    draws. Only what is asked for is kept.
     """
-    if steps < 0 or every < 1:
-        raise ValueError(f"need steps >= 0 and every >= 1, got steps={steps}, every={every}")
-    series = dict(series or {})
-    rec = Recording.from_world(world)
-
-    def capture() -> None:
-        rec.capture(world, **{name: fn(world) for name, fn in series.items()})
-
-    capture()
-    for k in range(1, steps + 1):
+    if steps < 0:
+        raise ValueError(f"need steps >= 0, got steps={steps}")
+    recorder = Recorder(world, every, series, draw, energy)
+    for _ in range(steps):
         world.step()
-        if k % every == 0:
-            capture()
-    return rec
+        recorder.step_done()
+    return recorder.recording

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import argparse
 
-from sandbox.cli.common import check_output, load_spec, positive_float, positive_int
+from sandbox.cli.common import CliError, check_output, load_spec, positive_float, positive_int
 from sandbox.settings import CHOICES
+
+PANELS = ("energy-bars",)
 
 
 def add_parser(sub) -> None:
@@ -19,10 +21,44 @@ def add_parser(sub) -> None:
     sim.add_argument("--gif", metavar="OUT.gif")
     sim.add_argument("--png", metavar="OUT.png")
     sim.add_argument("--fps", type=positive_float, default=30.0, help="GIF frames per second")
+    sim.add_argument(
+        "--draw",
+        metavar="LAYER,...",
+        help="debug layers on the GIF/PNG: contacts, normals, impulses, forces, gravity, "
+        "velocities, aabbs, com, joints, sleep (or all)",
+    )
+    sim.add_argument("--panel", metavar="PANEL", help="a panel beside the GIF/PNG: energy-bars")
     for key, choices in CHOICES.items():
         sim.add_argument(f"--{key}", choices=choices, help=f"override settings.{key}")
     sim.add_argument("--iterations", type=positive_int, default=None)
     sim.set_defaults(func=run)
+
+
+def check_drawing(args: argparse.Namespace) -> tuple[tuple[str, ...], str | None]:
+    """The ``--draw`` layers and the ``--panel``, checked before anything runs."""
+    from sandbox.overlays import FROM_TRACE, LayerError, parse_layers
+
+    layers: tuple[str, ...] = ()
+    for option, value in (("--draw", args.draw), ("--panel", args.panel)):
+        if value is not None and not (args.gif or args.png):
+            raise CliError(option, "draws on an image: give --gif or --png as well")
+    if args.draw is not None:
+        try:
+            layers = parse_layers(args.draw)
+        except LayerError as err:
+            raise CliError("--draw", err.message) from None
+        refused = [name for name in layers if name not in FROM_TRACE]
+        if args.engine == "pymunk" and refused:
+            raise CliError(
+                "--draw",
+                f"layer {refused[0]!r} is not available with --engine pymunk: its trace holds "
+                f"poses and velocities only (it draws {', '.join(FROM_TRACE)})",
+            )
+        if not layers:
+            raise CliError("--draw", "expected a comma-separated list of layers, got nothing")
+    if args.panel is not None and args.panel not in PANELS:
+        raise CliError("--panel", f"unknown panel {args.panel!r} (known: {', '.join(PANELS)})")
+    return layers, args.panel
 
 
 def run(args: argparse.Namespace) -> int:
@@ -36,28 +72,48 @@ def run(args: argparse.Namespace) -> int:
         ("--png", args.png, ".png"),
     ):
         check_output(option, path, suffix)
+    layers, panel = check_drawing(args)
     spec = load_spec(args.scene, args)
     world = build_world(spec)
-    want_frames = args.gif or args.png
+    want_frames = bool(args.gif or args.png)
+    energy = panel == "energy-bars"
+    # the GIF shows every `stride`-th step; a PNG shows the last step, so all are kept for it
+    stride = max(1, round(1.0 / (spec["dt"] * args.fps)))
+    every = 1 if args.png else stride
     if args.engine == "pymunk":
         from sandbox.pymunk_bridge import run_pymunk
+        from sandbox.replay import recording_from_rows
 
         rows = run_pymunk(spec, args.steps, spec["dt"])
+        if want_frames:
+            frames_world = build_world(spec)
+            rec = recording_from_rows(frames_world, rows, every, layers, energy)
     else:
+        from sandbox.recording import Recorder
         from sandbox.trace import run_world
 
-        rows = list(run_world(world, args.steps))
+        on_step = None
+        if want_frames:
+            recorder = Recorder(world, every, draw=layers, energy=energy)
+            on_step = recorder.step_done
+            rec = recorder.recording
+        rows = list(run_world(world, args.steps, on_step=on_step))
     if want_frames:
         from sandbox.render import render_gif, render_png
-        from sandbox.replay import recording_from_rows
 
         label = f"{args.engine}: {spec['name']}"
         if args.gif:
-            every = max(1, round(1.0 / (spec["dt"] * args.fps)))
-            rec = recording_from_rows(build_world(spec), rows, every=every)
-            render_gif(rec, args.gif, fps=args.fps, labels=[label])
+            render_gif(
+                rec,
+                args.gif,
+                fps=args.fps,
+                labels=[label],
+                stride=stride // every,
+                draw=layers,
+                panel=panel,
+            )
         if args.png:
-            render_png(recording_from_rows(build_world(spec), rows), args.png)
+            render_png(rec, args.png, draw=layers, panel=panel)
     if args.trace:
         write_trace(rows, args.trace)
     last = rows[-len(world.bodies) :] if world.bodies else []
