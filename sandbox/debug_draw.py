@@ -1,8 +1,10 @@
 """Debug drawing over the bodies of an animation, as in the Box2D samples (layers: see
 :mod:`sandbox.overlays`), and the key that says what each colour and arrow length means.
 
-Speed: every layer is one or two matplotlib collections (shafts and heads, markers) built once
-and handed new vertices per frame, drawn over the bodies. Arrows are sized in pixels (heads,
+Speed: every layer is one or two matplotlib artists built once and handed new vertices per
+frame, drawn over the bodies: a layer's lines (arrow shafts, boxes) are ONE line broken by NaNs,
+its arrow heads ONE compound path, its points one line of markers; each is a single path for
+the renderer, however many bodies there are (a collection of many small paths costs far more). Arrows are sized in pixels (heads,
 normals, torque arcs) or by a scale in metres per unit, one scale per unit shared by every run
 and frame, so arrows compare across the whole animation.
 """
@@ -16,6 +18,8 @@ from typing import Any, NamedTuple
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.lines import Line2D
+from matplotlib.patches import PathPatch
+from matplotlib.path import Path
 
 from sandbox.arrows import ArrowGeometry, arcs, arrows, auto_scale, boxes, nice_value
 from sandbox.outlines import OutlineArrays, place
@@ -108,20 +112,24 @@ class LayerArtists:
         self.scales = self._scales(layers, TYPICAL * height)
         lw = max(0.72, SHAFT_PX * px * 0.72)  # points
         self.artists: list[Any] = []
-        self.arrow_sets: dict[str, tuple[LineCollection, PolyCollection]] = {}
+        self.arrow_sets: dict[str, tuple[Line2D, PathPatch]] = {}
+
+        def line(color: tuple, width: float) -> Line2D:
+            (artist,) = ax.plot([], [], color=color, linewidth=width, solid_capstyle="butt")
+            return artist
+
         self.aabb = self.levers = None
         if "aabbs" in self.names:
-            self.aabb = LineCollection([], colors=[COLORS["aabb"]], linewidths=0.6 * lw)
+            self.aabb = line(COLORS["aabb"], 0.6 * lw)
             self.artists.append(self.aabb)
         if "joints" in self.names:
-            self.levers = LineCollection([], colors=[COLORS["joint"]], linewidths=0.6 * lw)
+            self.levers = line(COLORS["joint"], 0.6 * lw)
             self.artists.append(self.levers)
         for kind, layer in ARROWS.items():  # wide arrows first, thin ones over them
             if layer in self.names:
                 color = COLORS["force" if kind == "torque" else kind]
-                width = WIDTH.get(kind, 1.0) * lw
-                shafts = LineCollection([], colors=[color], linewidths=width, capstyle="butt")
-                heads = PolyCollection([], facecolors=[color], edgecolors="none")
+                shafts = line(color, WIDTH.get(kind, 1.0) * lw)
+                heads = ax.add_patch(PathPatch(_EMPTY, facecolor=color, edgecolor="none"))
                 self.arrow_sets[kind] = (shafts, heads)
                 self.artists += [shafts, heads]
         ms = MARKER_PX * px
@@ -144,8 +152,6 @@ class LayerArtists:
         for artist in self.artists:
             artist.set_animated(True)
             artist.set_zorder(5)
-            if artist not in ax.lines:
-                ax.add_collection(artist)
 
     def _scales(self, layers: Layers, typical: float) -> dict[str, float]:
         """Metres per unit for each arrow kind (radians per N m for torque): given or chosen."""
@@ -254,9 +260,9 @@ class LayerArtists:
             xy = joined("com" if kind == "com+" else kind).reshape(-1, 2)
             line.set_data(xy[:, 0], xy[:, 1])
         if self.aabb is not None:
-            self.aabb.set_segments(joined("aabb"))
+            self.aabb.set_data(*polylines(joined("aabb")).T)
         if self.levers is not None:
-            self.levers.set_segments(joined("lever"))
+            self.levers.set_data(*polylines(joined("lever")).T)
         for kind, (shafts, heads) in self.arrow_sets.items():
             tails, vectors = joined(kind, 0), joined(kind, 1)
             hl, hw = (WIDTH.get(kind, 1.0) ** 0.5 * h for h in self.head)
@@ -341,9 +347,35 @@ def _format(value: float, unit: str) -> str:
     return f"{text} {unit}"
 
 
-def _set(shafts: LineCollection, heads: PolyCollection, geometry: ArrowGeometry) -> None:
-    shafts.set_segments(geometry.shafts)
-    heads.set_verts(geometry.heads)
+_EMPTY = Path(np.zeros((0, 2)))
+
+
+def polylines(paths: np.ndarray) -> np.ndarray:
+    """Polylines ``(S, V, 2)`` as one ``(S (V + 1), 2)`` array, each followed by a NaN row that
+    breaks the line: all of them are one path for a single Line2D."""
+    paths = np.asarray(paths, dtype=float)
+    if paths.size == 0:
+        return np.zeros((0, 2))
+    out = np.full((paths.shape[0], paths.shape[1] + 1, 2), np.nan)
+    out[:, :-1] = paths
+    return out.reshape(-1, 2)
+
+
+def polygons(polys: np.ndarray) -> Path:
+    """Polygons ``(P, V, 2)`` as one compound path (filled with the non-zero rule: the heads
+    all turn the same way, so overlaps stay filled)."""
+    p, v = polys.shape[:2]
+    if p == 0:
+        return _EMPTY
+    verts = np.concatenate([polys, polys[:, :1]], axis=1).reshape(-1, 2)
+    codes = np.full((p, v + 1), Path.LINETO, dtype=Path.code_type)
+    codes[:, 0], codes[:, -1] = Path.MOVETO, Path.CLOSEPOLY
+    return Path(verts, codes.ravel())
+
+
+def _set(shafts: Line2D, heads: PathPatch, geometry: ArrowGeometry) -> None:
+    shafts.set_data(*polylines(geometry.shafts).T)
+    heads.set_path(polygons(geometry.heads))
 
 
 KEY_LINES = {"contacts": 2, "impulses": 2, "forces": 2}  # key entries per layer (else 1)

@@ -26,7 +26,7 @@ PANEL = "energy-bars"
 BARS = (  # (label, colour) in the order of bar_values' columns
     ("kinetic, linear", (0.84, 0.19, 0.15)),
     ("kinetic, rotation", (0.96, 0.55, 0.12)),
-    ("potential, gravity", (0.18, 0.42, 0.8)),
+    ("gravity potential", (0.18, 0.42, 0.8)),
     ("elastic (springs)", (0.16, 0.6, 0.28)),
     ("total E", (0.25, 0.25, 0.25)),
     ("work by forces W", (0.55, 0.3, 0.7)),
@@ -82,9 +82,10 @@ class EnergyBars:
         ax.set_title("Energy", fontsize=fontsize * 1.1)
         ax.set_autoscale_on(False)
         self.note = self._note(bool(measured.all()))
-        ax.text(
-            0.0, -0.11, self.note, transform=ax.transAxes, ha="left", va="top",
-            fontsize=0.85 * fontsize, color="0.25",
+        ax.annotate(  # under the axis label, whatever the image size
+            self.note, xy=(0.0, 0.0), xycoords="axes fraction", xytext=(0.0, -12 - 2.5 * fontsize),
+            textcoords="offset points", ha="left", va="top", fontsize=0.85 * fontsize,
+            color="0.25",
         )  # fmt: skip
         n = len(self.runs)
         self.height = 0.7 / n

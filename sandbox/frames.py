@@ -269,7 +269,7 @@ class FrameRenderer:
         self.bars, self.cursors, self.dots = None, [], []
         if self.energy:
             em = fontsize * _DPI / 72.0
-            box = rect(size_px + 9.5 * em, 5.2 * em, size_px - 11.0 * em, size_px - 7.2 * em)
+            box = rect(size_px + 10.5 * em, 6.6 * em, size_px - 12.0 * em, size_px - 8.6 * em)
             self.bars = EnergyBars(self.fig.add_axes(box), self.runs, self.colors, fontsize)
             self.animated += self.bars.artists
         else:
