@@ -14,7 +14,7 @@ from sandbox.arrows import arrows, nice_value
 from sandbox.cli import main
 from sandbox.controllers import Thruster
 from sandbox.joints import PinJoint, PivotJoint, SpringJoint
-from sandbox.overlays import LAYERS, LayerError, parse_layers
+from sandbox.overlays import LAYERS, LayerError, Layers, parse_layers
 from sandbox.recording import CircleOutline, Recording, record
 from sandbox.render import FrameRenderer, render_frames
 
@@ -216,3 +216,18 @@ def test_render_frames_takes_layers_as_an_option():
     plain = next(render_frames(rec, frames=[4], size_px=SIZE))
     drawn = next(render_frames(rec, frames=[4], size_px=SIZE, draw="velocities"))
     assert drawn.shape[0] > plain.shape[0]
+
+
+def test_arrow_length_is_the_value_times_the_scale():
+    """A 3 m/s velocity at 1 m per m/s ends 3 m right of the centre of mass: 10 px per m here."""
+    rec = Recording(["ball"], ["dynamic"], [[CircleOutline(np.zeros(2), 0.2)]])
+    rec.overlays.layers = ("velocities",)
+    rec.add_frame([[0.0, 0.05, 0.0]], 0.0, overlay={"velocities": [[3.0, 0.0]]})
+    view = (-5.0, 5.0, -5.0, 5.0)
+    green = np.array([0, 128, 26])  # the velocity colour (0, 0.5, 0.1)
+    for scale, tip in ((1.0, 3.0), (0.5, 1.5)):
+        layers = Layers("velocities", velocity=scale)
+        with FrameRenderer(rec, size_px=100, view=view, draw=layers, show_time=False) as r:
+            rows = r.frame(0)[46:54].astype(int)  # round y = 0 (the line snaps to a row)
+        drawn = np.flatnonzero((np.abs(rows - green).max(axis=2) < 60).any(axis=0))
+        assert drawn.max() == pytest.approx(50 + 10 * tip, abs=1.5)  # the tip, in pixels
