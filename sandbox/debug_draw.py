@@ -1,77 +1,47 @@
 """Debug drawing over the bodies of an animation, as in the Box2D samples (layers: see
-:mod:`sandbox.overlays`), and the key that says what each colour and arrow length means.
+:mod:`sandbox.overlays`; colours, sizes and the key: :mod:`sandbox.layer_key`).
 
 Speed: every layer is one or two matplotlib artists built once and handed new vertices per
 frame, drawn over the bodies: a layer's lines (arrow shafts, boxes) are ONE line broken by NaNs,
 its arrow heads ONE compound path, its points one line of markers; each is a single path for
-the renderer, however many bodies there are (a collection of many small paths costs far more). Arrows are sized in pixels (heads,
-normals, torque arcs) or by a scale in metres per unit, one scale per unit shared by every run
-and frame, so arrows compare across the whole animation.
+the renderer however many bodies there are (a collection of many small paths costs far more).
+Arrows are sized in pixels (heads, normals, torque arcs) or by a scale in metres per unit, one
+scale per unit shared by every run and frame, so arrows compare across the whole animation.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
-from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import PathPatch
 from matplotlib.path import Path
 
 from sandbox.arrows import ArrowGeometry, arcs, arrows, auto_scale, boxes, nice_value
+from sandbox.layer_key import (
+    ARROWS,
+    COLORS,
+    HEAD_PX,
+    HEAD_WIDTH_PX,
+    MARKER_PX,
+    NORMAL_PX,
+    SHAFT_PX,
+    SLEEP_FACE,
+    TORQUE_RADIUS_PX,
+    UNITS,
+    WIDTH,
+    KeyEntry,
+)
 from sandbox.outlines import OutlineArrays, place
 from sandbox.overlays import DATA_OF_LAYER, LayerError, Layers
 from sandbox.recording import Recording
 
-COLORS = {
-    "contact": (0.86, 0.08, 0.08),
-    "speculative": (0.45, 0.45, 0.45),
-    "normal": (0.1, 0.1, 0.1),
-    "normal impulse": (0.8, 0.0, 0.75),
-    "friction impulse": (0.0, 0.6, 0.62),
-    "force": (0.95, 0.45, 0.0),
-    "gravity": (0.45, 0.2, 0.7),
-    "velocity": (0.0, 0.5, 0.1),
-    "aabb": (0.55, 0.4, 0.1),
-    "com": (0.0, 0.0, 0.0),
-    "joint": (0.1, 0.2, 0.65),
-}
-SLEEP_FACE = (0.78, 0.78, 0.78, 1.0)
-# the arrows, in drawing order (wide first), with their layer; widths relative to a shaft
-ARROWS = {
-    "gravity": "gravity",
-    "force": "forces",
-    "torque": "forces",
-    "velocity": "velocities",
-    "normal impulse": "impulses",
-    "friction impulse": "impulses",
-    "normal": "normals",
-}
-WIDTH = {"gravity": 2.4, "force": 1.6, "torque": 1.6, "normal": 0.7}
-UNITS = {"impulse": "N s", "force": "N", "velocity": "m/s", "torque": "N m"}
-# sizes in pixels at 480 px (scaled with the image)
-HEAD_PX, HEAD_WIDTH_PX, SHAFT_PX = 8.0, 6.0, 1.8
-NORMAL_PX, TORQUE_RADIUS_PX, MARKER_PX = 22.0, 13.0, 4.5
 TYPICAL, LONGEST = 0.1, 0.35  # typical and longest arrow, fractions of the view height
 TYPICAL_SWEEP = 0.75 * math.pi  # a typical torque's arc (rad)
 KEY_ARROW_PX = 48.0  # a key's reference arrow is at most this long (and over 0.4 of it)
-
-
-class KeyEntry(NamedTuple):
-    """One line of the key: a glyph (``arrow`` of ``length`` px, ``arc`` turning ``length``
-    rad, ``marker``, ``box``, ``swatch``) in ``color`` and a ``label``; ``filled`` and
-    ``marker`` for markers."""
-
-    glyph: str
-    color: tuple
-    label: str
-    length: float = 0.0
-    filled: bool = True
-    marker: str = "o"  # "o", "s" (square), or "+o" (a circle with a cross: centre of mass)
-    width: float = 1.0  # an arrow's width, relative to a shaft
 
 
 def _check_recorded(runs: Sequence[Recording], names: tuple[str, ...]) -> None:
@@ -376,61 +346,3 @@ def polygons(polys: np.ndarray) -> Path:
 def _set(shafts: Line2D, heads: PathPatch, geometry: ArrowGeometry) -> None:
     shafts.set_data(*polylines(geometry.shafts).T)
     heads.set_path(polygons(geometry.heads))
-
-
-KEY_LINES = {"contacts": 2, "impulses": 2, "forces": 2}  # key entries per layer (else 1)
-KEY_COLUMN_PX = 235.0  # width of one column of the key at 480 px
-GLYPH_PX = 54.0  # room for the glyph before each label
-
-
-def key_layout(names: Sequence[str], width_px: float, px: float, em: float) -> tuple[int, float]:
-    """(columns, height in pixels) of the key strip for layers ``names`` in an image
-    ``width_px`` wide; ``em`` is the font size in pixels."""
-    entries = sum(KEY_LINES.get(name, 1) for name in names)
-    if not entries:
-        return 1, 0.0
-    columns = max(1, int(width_px // (KEY_COLUMN_PX * px)))
-    rows = math.ceil(entries / columns)
-    return columns, rows * 1.75 * em + 0.9 * em
-
-
-def draw_key(ax: Any, entries: Sequence[KeyEntry], columns: int, px: float, fontsize: float):
-    """Draw ``entries`` on ``ax`` (a strip whose data coordinates are its pixels), in
-    ``columns``, row by row from the top. Drawn once: the key is part of the background."""
-    ax.set_axis_off()
-    x1, y1 = ax.bbox.width, ax.bbox.height
-    ax.set_xlim(0.0, x1)
-    ax.set_ylim(0.0, y1)
-    em = fontsize * 100.0 / 72.0
-    col_w = x1 / columns
-    lw = max(0.72, SHAFT_PX * px * 0.72)
-    for i, entry in enumerate(entries):
-        row, col = divmod(i, columns)
-        x0 = col * col_w + 0.6 * em
-        y = y1 - 0.45 * em - (row + 0.5) * 1.75 * em
-        if entry.glyph in ("arrow", "arc"):
-            head = tuple(entry.width**0.5 * h for h in (HEAD_PX * px, HEAD_WIDTH_PX * px))
-            if entry.glyph == "arrow":
-                geometry = arrows([[x0, y]], [[entry.length, 0.0]], *head)
-            else:
-                r = TORQUE_RADIUS_PX * px
-                geometry = arcs([[x0 + 1.5 * r, y - 0.5 * r]], [entry.length], r, *head, 0.0)
-            width = lw * entry.width
-            ax.add_collection(LineCollection(geometry.shafts, colors=[entry.color], lw=width))
-            ax.add_collection(PolyCollection(geometry.heads, facecolors=[entry.color]))
-        elif entry.glyph == "marker":
-            size = MARKER_PX * px * (1.6 if entry.marker == "+o" else 1.0)
-            for marker in ("o", "+") if entry.marker == "+o" else (entry.marker,):
-                ax.plot(
-                    [x0 + 0.5 * em], [y], marker=marker, markersize=size, mew=0.9 * lw,
-                    mfc=entry.color if entry.filled else "white", mec=entry.color,
-                )  # fmt: skip
-        else:  # a box outline or a filled swatch
-            lo, hi = np.array([[x0, y - 0.4 * em]]), np.array([[x0 + 1.6 * em, y + 0.4 * em]])
-            if entry.glyph == "box":
-                ax.add_collection(LineCollection(boxes(lo, hi), colors=[entry.color], lw=lw))
-            else:
-                face = PolyCollection(boxes(lo, hi)[:, :4], facecolors=[entry.color])
-                face.set_edgecolor("0.45")
-                ax.add_collection(face)
-        ax.text(x0 + GLYPH_PX * px, y, entry.label, fontsize=fontsize, va="center", ha="left")

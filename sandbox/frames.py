@@ -28,12 +28,14 @@ from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from sandbox.debug_draw import COLORS as LAYER_COLORS
-from sandbox.debug_draw import SLEEP_FACE, LayerArtists, draw_key, key_layout
+from sandbox.debug_draw import LayerArtists
 from sandbox.energy_bars import PANEL, EnergyBars
+from sandbox.layer_key import COLORS as LAYER_COLORS
+from sandbox.layer_key import SLEEP_FACE, draw_key, key_layout
 from sandbox.outlines import OutlineArrays, bounds, place, zigzag
 from sandbox.overlays import Layers
 from sandbox.recording import Recording
+from sandbox.series_panels import SeriesPanels
 
 DEFAULT_COLORS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C8", "C9")
 STATIC_FACE = (0.62, 0.62, 0.62, 0.7)
@@ -266,14 +268,17 @@ class FrameRenderer:
                 animated=True,
             )
             self.animated.append(self.time_text)
-        self.bars, self.cursors, self.dots = None, [], []
+        self.bars = self.series = None
         if self.energy:
             em = fontsize * _DPI / 72.0
             box = rect(size_px + 10.5 * em, 6.6 * em, size_px - 12.0 * em, size_px - 8.6 * em)
             self.bars = EnergyBars(self.fig.add_axes(box), self.runs, self.colors, fontsize)
             self.animated += self.bars.artists
-        else:
-            self._build_panels(panels, size_px, width_px, scale, fontsize)
+        elif panels:
+            self.series = SeriesPanels(
+                self.fig, rect, self.runs, self.colors, panels, size_px, scale, fontsize
+            )
+            self.animated += self.series.artists
         self.canvas.draw()
         self.background = self.canvas.copy_from_bbox(self.fig.bbox)
 
@@ -287,47 +292,6 @@ class FrameRenderer:
             self.ax.axhspan(ymin - (ymax - ymin), top, color=WATER_FACE, linewidth=0, zorder=0.5)
             if surface < ymax:
                 self.ax.axhline(surface, color=WATER_EDGE, linewidth=linewidth, zorder=0.6)
-
-    def _build_panels(
-        self, panels: list[str], size_px: int, width_px: int, scale: float, fontsize: float
-    ) -> None:
-        if not panels:
-            return
-        em = fontsize * _DPI / 72.0  # font size in pixels: margins leave room for tick labels
-        left, right, bottom, top, gap = 5.8 * em, 1.0 * em, 3.8 * em, 1.0 * em, 1.4 * em
-        h = (size_px - bottom - top - gap * (len(panels) - 1)) / len(panels)
-        t_all = np.concatenate([np.asarray(r.times, dtype=float) for r in self.runs])
-        t0, t1 = float(t_all.min()), float(t_all.max())
-        for j, name in enumerate(panels):
-            y = bottom + (len(panels) - 1 - j) * (h + gap)
-            ax = self.fig.add_axes(
-                self._rect(size_px + left, y, width_px - size_px - left - right, h)
-            )
-            for r, c in zip(self.runs, self.colors, strict=True):
-                ax.plot(r.times, r.series[name], color=c, linewidth=1.2 * scale)
-            ax.relim()
-            ax.autoscale_view()
-            ax.set_autoscale_on(False)  # the cursor and dots must not move the limits
-            ax.set_xlim(t0, t1 if t1 > t0 else t0 + 1.0)
-            ax.set_ylabel(name, fontsize=fontsize)
-            ax.tick_params(labelsize=fontsize)
-            ax.grid(alpha=0.3)
-            if j == len(panels) - 1:
-                ax.set_xlabel("t (s)", fontsize=fontsize)
-            else:
-                ax.tick_params(labelbottom=False)
-            cursor = ax.axvline(t0, color="0.2", linewidth=0.8 * scale, animated=True)
-            dots = ax.scatter(
-                np.zeros(len(self.runs)),
-                np.zeros(len(self.runs)),
-                c=self.colors,
-                s=18 * scale**2,
-                zorder=3,
-                animated=True,
-            )
-            self.cursors.append((name, cursor))
-            self.dots.append(dots)
-            self.animated += [cursor, dots]
 
     @property
     def size(self) -> tuple[int, int]:
@@ -377,10 +341,8 @@ class FrameRenderer:
         times = [r.times[kr] for r, kr in zip(self.runs, ks, strict=True)]
         if self.time_text is not None:
             self.time_text.set_text(f"t = {times[0]:.2f} s")
-        for (name, cursor), dots in zip(self.cursors, self.dots, strict=True):
-            cursor.set_xdata([times[0], times[0]])
-            values = [r.series[name][kr] for r, kr in zip(self.runs, ks, strict=True)]
-            dots.set_offsets(np.column_stack([times, values]))
+        if self.series is not None:
+            self.series.update(ks, times)
         self.canvas.restore_region(self.background)
         for artist in self.animated:
             artist.axes.draw_artist(artist)
