@@ -17,6 +17,7 @@ import numpy as np
 
 from sandbox.manifolds import FIELDS, Manifolds
 from sandbox.records import CONTACT, PROXY
+from sandbox.vec2 import Vec2
 
 __all__ = ["FIELDS", "Contact", "ContactBuffers", "Manifolds", "contacts_from_manifolds"]
 
@@ -118,8 +119,8 @@ class Contact:
     ) -> None:
         self.a, self.b = a, b
         self.shape_a, self.shape_b = shape_a, shape_b
-        self.normal = np.array(normal, dtype=float)
-        self.points = [np.array(p, dtype=float) for p in points]
+        self.normal = Vec2(*(float(x) for x in np.asarray(normal, dtype=float)))
+        self.points = [Vec2(*(float(x) for x in np.asarray(p, dtype=float))) for p in points]
         self.depths = [float(d) for d in depths]
         n = len(self.points)
         self.impulses = [0.0] * n if impulses is None else [float(x) for x in impulses]

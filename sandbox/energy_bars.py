@@ -83,10 +83,16 @@ class EnergyBars:
         ax.set_autoscale_on(False)
         self.note = self._note(bool(measured.all()))
         ax.annotate(  # under the axis label, whatever the image size
-            self.note, xy=(0.0, 0.0), xycoords="axes fraction", xytext=(0.0, -12 - 2.5 * fontsize),
-            textcoords="offset points", ha="left", va="top", fontsize=0.85 * fontsize,
+            self.note,
+            xy=(0.0, 0.0),
+            xycoords="axes fraction",
+            xytext=(0.0, -12 - 2.5 * fontsize),
+            textcoords="offset points",
+            ha="left",
+            va="top",
+            fontsize=0.85 * fontsize,
             color="0.25",
-        )  # fmt: skip
+        )
         n = len(self.runs)
         self.height = 0.7 / n
         single = n == 1

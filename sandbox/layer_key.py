@@ -104,9 +104,14 @@ def draw_key(ax: Any, entries: Sequence[KeyEntry], columns: int, px: float, font
             size = MARKER_PX * px * (1.6 if entry.marker == "+o" else 1.0)
             for marker in ("o", "+") if entry.marker == "+o" else (entry.marker,):
                 ax.plot(
-                    [x0 + 0.5 * em], [y], marker=marker, markersize=size, mew=0.9 * lw,
-                    mfc=entry.color if entry.filled else "white", mec=entry.color,
-                )  # fmt: skip
+                    [x0 + 0.5 * em],
+                    [y],
+                    marker=marker,
+                    markersize=size,
+                    mew=0.9 * lw,
+                    mfc=entry.color if entry.filled else "white",
+                    mec=entry.color,
+                )
         else:  # a box outline or a filled swatch
             lo, hi = np.array([[x0, y - 0.4 * em]]), np.array([[x0 + 1.6 * em, y + 0.4 * em]])
             if entry.glyph == "box":

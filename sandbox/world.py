@@ -61,6 +61,9 @@ class World:
     def __init__(
         self, gravity=(0.0, -9.81), dt: float = 1.0 / 60.0, name: str = "world", **settings
     ):
+        from sandbox.arguments import check_world_arguments  # the API's checks (SceneError)
+
+        check_world_arguments(gravity, dt, name, settings)
         if not dt > 0:
             raise ValueError("dt: must be > 0")
         self.name = name
