@@ -247,7 +247,13 @@ def _table(result: ComparisonResult, spec: dict) -> str:
 # ---------------------------------------------------------------- figures
 
 
+ROUNDING = 1e-9  # m or rad: deviations below this are rounding, drawn on a linear scale
+
+
 def _save_figure(fig, path: Path) -> None:
+    from sandbox.figure_standard import enforce
+
+    enforce(fig, path.name)  # the lessons' figure standard, when SANDBOX_CHECK_FIGURES is set
     with atomic_write(path, "wb") as f:
         fig.savefig(f, format="png", dpi=100)
 
@@ -270,14 +276,18 @@ def _deviation_figure(result: ComparisonResult, path: Path) -> None:
                 y = data[lab][:, j]
                 name = result.names[i] if len(labels) == 1 else f"{result.names[i]} ({lab})"
                 ax.plot(t, y, styles[k % 4], color=f"C{j % 10}", linewidth=1.0, label=name)
-        if peak > 0.0:  # log scale above 1e-9 of the peak, linear below (so 0 shows as 0)
-            ax.set_yscale("symlog", linthresh=max(peak * 1e-9, 1e-300))
+        # log scale above ROUNDING, linear below: rounding differences (1e-14) show as 0, not as
+        # data on a log axis reaching down to 1e-23
+        ax.set_yscale("symlog", linthresh=ROUNDING)
+        ax.set_ylim(0.0, max(2.0 * peak, 10.0 * ROUNDING))
         ax.set_ylabel(what)
         ax.grid(alpha=0.3)
     if 0 < len(result.moving) * len(labels) <= 12:
         axes[0].legend(fontsize=7)
     axes[1].set_xlabel("t (s)")
-    axes[0].set_title(f"{result.scene}: deviation from pymunk, per body")
+    axes[0].set_title(
+        f"{result.scene}: deviation from pymunk, per body (linear below {ROUNDING:g}: rounding)"
+    )
     fig.tight_layout()
     _save_figure(fig, path)
 
