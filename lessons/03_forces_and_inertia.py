@@ -104,7 +104,7 @@ print(
 )
 
 # %%
-fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 3.8))
+fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4.4))
 ax.plot(POSITIONS, [0, 0], color="0.5", lw=2, zorder=1)
 for m, x, name in zip(MASSES, POSITIONS, ("m1 = 1 kg", "m2 = 2 kg"), strict=True):
     ax.scatter([x], [0], s=400 * m, color="tab:blue", zorder=3)
@@ -117,10 +117,11 @@ for a in (0.2, 0.6):
 ax.plot([], [], color="tab:red", ls="--", label="axes at 0.2, 0.6 m: I = 0.36 kg m$^2$")
 ax.set(xlim=(-0.2, 0.8), ylim=(-0.6, 0.6), xlabel="x (m)", yticks=[])
 ax.set_title("slides' example: which axis?")
-ax.legend(loc="lower left", fontsize=8)
+ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, ncol=2)
 
 a_grid = np.linspace(-0.1, 0.9, 201)
-bx.plot(a_grid, [moment_of_inertia(MASSES, POSITIONS, axis=a) for a in a_grid], color="k")
+bx.plot(a_grid, [moment_of_inertia(MASSES, POSITIONS, axis=a) for a in a_grid], color="k",
+        label="I(a) about an axis at a")  # fmt: skip
 bx.scatter([c], [i_cm], color="tab:green", zorder=3, label="about c: 0.24 (correct)")
 bx.scatter([0.2, 0.6], [0.36, 0.36], color="tab:red", zorder=3, label="0.36 (the slide's figure)")
 bx.axhline(0.36, color="tab:red", ls=":", lw=1)
@@ -207,7 +208,7 @@ x = np.arange(len(names))
 bx.bar(x - 0.2, computed, 0.4, label="computed (sandbox.mass)")
 bx.bar(x + 0.2, formula, 0.4, label="closed form / two boxes", hatch="//", alpha=0.6)
 bx.set_xticks(x, names, rotation=35, ha="right", fontsize=8)
-bx.set(ylabel="I about the centroid (kg m$^2$), m = 1 kg", title="same mass, different spread")
+bx.set(ylabel="I about the centroid, m = 1 kg (kg m$^2$)", title="same mass, different spread")
 bx.legend(fontsize=8)
 fig.tight_layout()
 save_figure(fig, OUT / "shape_moments.png", dpi=100)
@@ -234,6 +235,10 @@ save_figure(fig, OUT / "shape_moments.png", dpi=100)
 #
 # In both runs the net force is the same, so the centre of mass accelerates identically:
 # $v(t)$ is a straight line of slope $F / m$ wherever the force acts.
+#
+# In 2D the torque and the angular acceleration both point along $z$, so the slide's "angular
+# acceleration parallel to torque" always holds here. In 3D it holds only for a torque along a
+# principal axis of the body, symmetric or not (lesson 15 measures the angle between them).
 
 # %%
 F = np.asarray(FORCE, dtype=float)
@@ -357,3 +362,77 @@ gif = render_gif(
     stride=GIF_EVERY,
 )
 print(f"wrote {len(world_rec)} frames to {gif.name}")
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** Push with the same $\mathbf{f} = (0, 2)$ N, but at $\mathbf{r} = (0, 0.8)$ m, straight
+# above the centre of mass (lever fixed in the world). What are $a$ and $\alpha$?
+
+
+# %%
+def push(lever, plate=PLATE, seconds: float = 0.5) -> tuple[float, float]:
+    """(a_y, alpha) fitted over ``seconds`` of a push F at c + lever (lever fixed in the world)."""
+    world = World(gravity=(0.0, 0.0), dt=DT)
+    body = world.add_body(Body(name="plate"))
+    body.add_shape(Box(width=plate[0], height=plate[1], density=DENSITY))
+    t, vy, w = [], [], []
+    for _ in range(int(round(seconds / DT))):
+        body.apply_force(F, point=np.asarray(body.center_of_mass) + np.asarray(lever))
+        world.step()
+        t.append(world.time)
+        vy.append(body.velocity[1])
+        w.append(body.angular_velocity)
+    return float(np.polyfit(t, vy, 1)[0]), float(np.polyfit(t, w, 1)[0])
+
+
+a1, alpha1 = push((0.0, 0.8))
+print(f"lever (0, 0.8) m: a = {a1:.4f} m/s^2, alpha = {alpha1:.4f} rad/s^2")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $\tau = r_x f_y - r_y f_x = 0 \times 2 - 0.8 \times 0 = 0$: the force's line of action passes
+# through the centre of mass, so it cannot turn the plate, however far from the centre it is
+# applied. The plate still accelerates at $F / m = 2 / 2 = 1$ m/s$^2$. The run prints $a = 1$,
+# $\alpha = 0$.
+#
+# </details>
+#
+# **2.** Add a third point mass of 1 kg at $x = 1.0$ m to the slides' example ($1$ kg at 0,
+# $2$ kg at $0.6$ m). Where is the centre of mass, and what is $I$ about it?
+
+# %%
+c3 = center_of_mass((1.0, 2.0, 1.0), (0.0, 0.6, 1.0))
+print(
+    f"c = {c3:.4f} m, I = {moment_of_inertia((1.0, 2.0, 1.0), (0.0, 0.6, 1.0), axis=c3):.4f} kg m^2"
+)
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $c = (1 \times 0 + 2 \times 0.6 + 1 \times 1.0) / 4 = 2.2 / 4 = 0.55$ m, and
+# $I = 1 \times 0.55^2 + 2 \times 0.05^2 + 1 \times 0.45^2 = 0.3025 + 0.005 + 0.2025 = 0.51$
+# kg m$^2$. The printed values match.
+#
+# </details>
+#
+# **3.** Make the plate twice as wide ($4 \times 1$ m, same density) and push it as in the
+# lesson ($\mathbf{f} = (0, 2)$ N at $\mathbf{r} = (0.8, 0)$ m). How do $a$ and $\alpha$ change?
+
+# %%
+a3, alpha3 = push(LEVER, plate=(4.0, 1.0))
+print(f"4 x 1 m plate: a = {a3:.4f} m/s^2, alpha = {alpha3:.4f} rad/s^2 "
+      f"(2 x 1 m plate: {a_theory:.4f}, {alpha_theory:.4f})")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The mass doubles ($m = 4$ kg), so $a = 2/4 = 0.5$ m/s$^2$: half. The moment grows much more,
+# $I = m(w^2 + h^2)/12 = 4 \times 17 / 12 = 5.667$ kg m$^2$ against $2 \times 5 / 12 = 0.833$:
+# 6.8 times, because mass far from the centre counts with $r^2$. The torque is unchanged,
+# $0.8 \times 2 = 1.6$ N m, so $\alpha = 1.6 / 5.667 = 0.282$ rad/s$^2$ instead of $1.92$.
+#
+# </details>
