@@ -620,8 +620,8 @@ save_figure(fig, OUT / "sign_slips.png", dpi=100)
 # step, and the solvers disagree:
 #
 # - `pairwise` resolves each contact once, in turn (the slides' collision algorithm). The
-#   contacts come in the order ball0-ball1, ball1-ball2, ..., and each step passes the swap one
-#   contact further: the classic result.
+#   contacts come in the order ball0-ball1, ball1-ball2, ..., and each sees the velocities the
+#   one before left: within one step the swap runs down the chain, the classic result.
 # - `iterative` works in two passes per step (as Box2D does). First its sweeps make every
 #   contact stop approaching, with no bounce: for touching balls of equal mass that is one
 #   inelastic block, all five at $v_0/5$. Then a single **restitution pass** visits only the
@@ -689,7 +689,7 @@ for solver in ("pairwise", "shock", "iterative"):
         m = world.manifolds
         hit = m is not None and len(m) > 0 and float(m.normal_impulse.max()) > 0.0
     before, e_before, k_before = state
-    for _ in range(4):  # the pairwise solver passes the swap one contact further per step
+    for _ in range(4):  # four more steps: the velocities after the impact have settled
         world.step()
     after = [b.velocity[0] for b in balls]
     e_after = world.energy()
