@@ -639,3 +639,67 @@ print_table(["structure", "integrator", "max energy err", "max L err", "final dr
 # - explicit Euler on Euler's equations gains energy at first order in $\Delta t$; RK4 holds it
 #   below 1e-9 here (1.1e-10 at 4 ms), and with exact rotations all three structures then agree to rounding: the
 #   choice between them is about storage and cost, the table above.
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** Turn the cuboid (`CUBOID`: $I_x, I_y, I_z$ = 4.17, 8.33, 10.83 g m$^2$) by 45 degrees
+# about z. What are $I'_{xx}$, $I'_{yy}$ and $I'_{xy}$ in the world axes?
+
+# %%
+t45 = inr.rotate_tensor(box_i, r3.scaled_axis_to_matrix(np.array([0.0, 0.0, np.pi / 4])))
+print(
+    f"I'xx = {1e3 * t45[0, 0]:.4f}, I'yy = {1e3 * t45[1, 1]:.4f}, I'xy = {1e3 * t45[0, 1]:.4f} g m^2"
+)
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# With $\cos^2 45° = \sin^2 45° = \frac{1}{2}$: $I'_{xx} = I'_{yy} = (I_x + I_y)/2 = 6.25$ g m$^2$,
+# and $I'_{xy} = (I_x - I_y)\sin 45°\cos 45° = (4.1667 - 8.3333)/2 = -2.0833$ g m$^2$, the
+# largest product of inertia any turn about z gives. $I_{zz}$ stays 10.8333. The run prints the
+# same.
+#
+# </details>
+#
+# **2.** A torque along $(1, 0, 1)$ on the cuboid at rest: what angle does $\boldsymbol{\alpha}$
+# make with $\boldsymbol{\tau}$?
+
+# %%
+tau_e2 = np.array([1.0, 0.0, 1.0]) / np.sqrt(2.0)
+alpha_e2 = np.linalg.solve(box_i, tau_e2)
+print(f"alpha direction {np.round(alpha_e2 / np.linalg.norm(alpha_e2), 4)}, angle to tau "
+      f"{np.degrees(np.arccos(alpha_e2 @ tau_e2 / np.linalg.norm(alpha_e2))):.2f} deg")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $\boldsymbol{\alpha} = \mathbf{I}^{-1}\boldsymbol{\tau} \propto (1/I_x, 0, 1/I_z) = (0.240, 0,
+# 0.0923)$ (per g m$^2$): the small $I_x$ makes $\boldsymbol{\alpha}$ lean towards x. The cosine
+# of the angle is $(0.240 + 0.0923)/(0.2571\sqrt{2}) = 0.914$: 24.0 degrees. Printed: 23.96.
+#
+# </details>
+#
+# **3.** A body has turned 5 rad about z, $\boldsymbol{\varphi} = (0, 0, 5)$. Wrap it. What
+# rotation does the slides' "subtract $2\pi$" from each component give instead?
+
+# %%
+phi_e3 = np.array([0.0, 0.0, 5.0])
+wrapped_e3 = r3.wrap_scaled_axis(phi_e3)
+per_component = phi_e3 - 2 * np.pi
+print(f"wrapped: {np.round(wrapped_e3, 4)}, same rotation: "
+      f"{np.allclose(r3.scaled_axis_to_matrix(wrapped_e3), r3.scaled_axis_to_matrix(phi_e3))}; "
+      f"per component: {np.round(per_component, 4)}, same rotation: "
+      f"{np.allclose(r3.scaled_axis_to_matrix(per_component), r3.scaled_axis_to_matrix(phi_e3))}")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $\boldsymbol{\varphi}(1 - 2\pi/5) = (0, 0, 5 - 2\pi) = (0, 0, -1.2832)$: 1.28 rad clockwise is
+# the same as 5 rad anticlockwise. Subtracting $2\pi$ from every component gives
+# $(-6.2832, -6.2832, -1.2832)$, a turn by 9.0 rad about a tilted axis: a different rotation
+# (the run prints False for it).
+#
+# </details>
