@@ -37,16 +37,16 @@ import time
 
 import numba
 import numpy as np
+from sandbox.collision import compiled
+from sandbox.contact_cache import match_rows
+from sandbox.geometry_arrays import S_BODY
 
 import scenes  # benchmarks/scenes.py, beside this file
 from sandbox import integrators, orientation
 from sandbox.broadphase.aabb import shape_aabbs_into, sort_pairs_into
 from sandbox.broadphase.sap import gather, sap_kernel, sweep_axis, update_order
 from sandbox.build import build_world
-from sandbox.collision import compiled
 from sandbox.contact import I_COUNT, buffers
-from sandbox.contact_cache import match_rows
-from sandbox.geometry_arrays import S_BODY
 from sandbox.jit import njit
 from sandbox.narrowphase import collide_rows
 from sandbox.penetration import position_phase

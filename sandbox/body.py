@@ -167,10 +167,10 @@ class Body:
 
     @property
     def angle(self) -> float:
-        """Orientation in radians, in [-pi, pi]."""
+        """Orientation in radians, continuous: turns accumulate (as in pymunk)."""
         if self.world is None:
             return self._init["angle"]
-        return float(self.world.angles()[self.index])
+        return float(self.world.state["angle"][self.index])
 
     @angle.setter
     def angle(self, value: float) -> None:

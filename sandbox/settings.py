@@ -57,6 +57,13 @@ class Settings:
         if int(self.iterations) < 1:
             raise ValueError("settings.iterations: must be >= 1")
 
+    def __setattr__(self, name: str, value) -> None:
+        old = self.__dict__.get(name)
+        object.__setattr__(self, name, value)
+        observer = self.__dict__.get("_observer")
+        if observer is not None and not name.startswith("_"):
+            observer(name, old, value)
+
     def scene_dict(self) -> dict:
         """The contract part, as written to a scene file."""
         return {k: getattr(self, k) for k in SCENE_KEYS}

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox import geometry
+import sandbox.geometry as geometry
 
 
 class Shape:
