@@ -32,7 +32,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from sandbox import Body, Box, Circle, World
-from sandbox.buoyancy import box_draft, clip_below, disc_draft, polygon_area_centroid
+from sandbox.buoyancy import box_draft, disc_draft
 from sandbox.forces import Buoyancy
 from sandbox.joints import SpringJoint
 from sandbox.lessonkit import output_dir, print_table, save_figure
@@ -242,8 +242,7 @@ print(f"wrote {len(rec)} frames to {gif.name}")
 # $E = m g\,(y_G - y_B)$ is lowest, $y_G$ its centre of mass and $y_B$ the centroid of the water
 # it displaces, with the waterline placed (for each tilt $\theta$) so that the displaced area
 # stays $A\,\rho_b/\rho_{fluid}$: the lower the centre of mass sits below the centre of
-# buoyancy, the better. For a unit square (clipping it at the waterline, the same clip the
-# buoyancy force uses) the minimum is *not* always on a corner: at density 0.5 it floats
+# buoyancy, the better. For a unit square (clipped at the waterline, as the buoyancy force does) the minimum is *not* always on a corner: at density 0.5 it floats
 # corner-down at 45 degrees, at 0.25 and 0.75 tilted by $\arctan\frac{1}{2} = 26.6$ degrees, and
 # below 0.21 or above 0.79 flat. (By symmetry a tilt of $\theta$ and $90° - \theta$ are the same
 # pose: the table folds the measured angles into $[0°, 45°]$.) After the animation's 10 s the
@@ -251,6 +250,27 @@ print(f"wrote {len(rec)} frames to {gif.name}")
 
 
 # %%
+def clip_below(points: list, level: float) -> list:
+    """The part of a convex polygon below y = ``level`` (one Sutherland-Hodgman pass)."""
+    out = []
+    for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1], strict=True):
+        if y0 <= level:
+            out.append((x0, y0))
+        if (y0 < level) != (y1 < level):  # the edge crosses the waterline
+            out.append((x0 + (level - y0) * (x1 - x0) / (y1 - y0), level))
+    return out
+
+
+def area_and_centroid_y(points: list) -> tuple[float, float]:
+    """Area (m^2) and centroid height (m) of a polygon (shoelace formula)."""
+    a = cy = 0.0
+    for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1], strict=True):
+        cross_ = x0 * y1 - x1 * y0
+        a += cross_
+        cy += (y0 + y1) * cross_
+    return 0.5 * a, cy / (3.0 * a) if a else 0.0
+
+
 def buoyancy_energy(theta: float, ratio: float) -> float:
     """(y_G - y_B) of a unit square tilted by theta with a fraction ``ratio`` under water (m)."""
     c, s_ = math.cos(theta), math.sin(theta)
@@ -262,9 +282,9 @@ def buoyancy_energy(theta: float, ratio: float) -> float:
     for _ in range(50):
         mid = 0.5 * (lo + hi)
         lo, hi = (
-            (mid, hi) if polygon_area_centroid(clip_below(corners, mid))[0] < ratio else (lo, mid)
+            (mid, hi) if area_and_centroid_y(clip_below(corners, mid))[0] < ratio else (lo, mid)
         )
-    return 0.0 - polygon_area_centroid(clip_below(corners, 0.5 * (lo + hi)))[2]
+    return 0.0 - area_and_centroid_y(clip_below(corners, 0.5 * (lo + hi)))[1]
 
 
 tilts = np.radians(np.linspace(0.0, 45.0, 451))
