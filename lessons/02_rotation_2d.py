@@ -545,7 +545,7 @@ print_table(
 )  # fmt: skip
 
 # %%
-fig, axes = plt.subplots(1, 2, figsize=(12, 4))
+fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
 bar_w = 0.25
 for ax, data, unit, keys in (
     (axes[0], py, "us per call (plain-Python classes)",
@@ -561,7 +561,7 @@ for ax, data, unit, keys in (
     ax.set_xticks(xs, ["integrate" if k is False else k for k in keys])
     ax.set(ylabel=unit, yscale="log")
     ax.grid(alpha=0.3, axis="y")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3)
 axes[0].set_title("Python: interpreter and numpy overhead dominate")
 axes[1].set_title("compiled: the arithmetic (cos + sin dominate)")
 fig.tight_layout()

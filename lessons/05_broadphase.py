@@ -222,7 +222,7 @@ for n in (1000, 10000):
     print_table(["strategy", "pair tests", "ms per call", "overlapping pairs"], table, digits=3)
     print()
 
-fig, axes = plt.subplots(1, 2, figsize=(9.6, 4.0))
+fig, axes = plt.subplots(1, 2, figsize=(9.6, 5.0))
 for name in STRATEGIES:
     data = np.array([r[:3] for r in results[name]], dtype=float)
     axes[0].loglog(data[:, 0], data[:, 1], "o-", color=COLOUR[name], label=name, ms=4)
@@ -234,7 +234,7 @@ axes[1].set_ylabel("time per call (ms)")
 for ax in axes:
     ax.set_xlabel("number of circles N (count)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3)
 axes[0].set_title("pair tests")
 axes[1].set_title("time (best of several calls)")
 fig.tight_layout()
