@@ -5,7 +5,6 @@ from __future__ import annotations
 
 from sandbox.body import Body
 from sandbox.scene_export import world_to_scene
-from sandbox.settings import SCENE_KEYS
 from sandbox.shapes import shape_from_dict
 from sandbox.world import World
 
@@ -16,7 +15,7 @@ def build_world(spec: dict) -> World:
         gravity=spec["gravity"],
         dt=spec["dt"],
         name=spec.get("name", "scene"),
-        **{k: spec["settings"][k] for k in SCENE_KEYS},
+        **spec["settings"],  # the contract keys and any other setting the scene gives
     )
     for b in spec["bodies"]:
         body = Body(

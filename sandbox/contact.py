@@ -17,6 +17,7 @@ import numpy as np
 
 from sandbox.manifolds import FIELDS, Manifolds
 from sandbox.records import CONTACT, PROXY
+from sandbox.vec2 import Vec2
 
 __all__ = ["FIELDS", "Contact", "ContactBuffers", "Manifolds", "contacts_from_manifolds"]
 
@@ -58,13 +59,15 @@ class ContactBuffers:
         self.pairs = np.zeros((2, capacity, 2), dtype=np.int64)
         self.capacity = capacity
 
-    def release(self, s: int) -> None:
-        """Set ``s`` is about to be written: views of it still held get copies of their own."""
+    def release(self, s: int) -> bool:
+        """Set ``s`` is about to be written: views of it still held get copies of their own.
+        Returns whether a view of the other set may still be held."""
         ref = self._views[s]
         view = ref() if ref is not None else None
         if view is not None:
             view.detach()
         self._views[s] = None
+        return self._views[1 - s] is not None
 
     def manifolds(self, ctx) -> Manifolds:
         """The last step's manifolds (``ctx``: the world's step context), as a view."""
@@ -118,8 +121,8 @@ class Contact:
     ) -> None:
         self.a, self.b = a, b
         self.shape_a, self.shape_b = shape_a, shape_b
-        self.normal = np.array(normal, dtype=float)
-        self.points = [np.array(p, dtype=float) for p in points]
+        self.normal = Vec2(*(float(x) for x in np.asarray(normal, dtype=float)))
+        self.points = [Vec2(*(float(x) for x in np.asarray(p, dtype=float))) for p in points]
         self.depths = [float(d) for d in depths]
         n = len(self.points)
         self.impulses = [0.0] * n if impulses is None else [float(x) for x in impulses]

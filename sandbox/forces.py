@@ -200,8 +200,18 @@ class ForceGenerator:
         tau += out["w"]
 
     def __repr__(self) -> str:
-        fields = ", ".join(f"{k}={v!r}" for k, v in self.to_dict().items() if k != "type")
-        return f"{type(self).__name__}({fields})"
+        """``Drag(linear=0.1, quadratic=0, angular=0, bodies=None)``: the scene-file fields."""
+        fields = {k: v for k, v in self.to_dict().items() if k != "type"}
+        return f"{type(self).__name__}({', '.join(f'{k}={_show(v)}' for k, v in fields.items())})"
+
+
+def _show(value) -> str:
+    """A field value as a repr shows it: floats short (0.1, 0), lists of them likewise."""
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_show(v) for v in value) + "]"
+    return repr(value)
 
 
 class Drag(ForceGenerator):

@@ -248,10 +248,11 @@ def euler_velocity(b, gravity, dt: float, explicit: bool) -> None:
 
 
 @njit
-def integrate_velocities(model, ctx) -> None:
+def integrate_velocities(model, context) -> None:
     """The velocity stage: each dynamic body's velocity gets the integrator's increment;
     its free-motion move is remembered for :func:`integrate_positions`. Kinematic bodies move
     at their own velocity; static bodies do not move."""
+    ctx = context[0]
     bodies, _, _, joints, generators = model
     dt, method, gravity = ctx["dt"], ctx["integrator"], ctx["gravity"]
     for i in range(bodies.shape[0]):
@@ -298,9 +299,10 @@ def plan_motion(bodies, dt: float) -> None:
 
 
 @njit
-def move_bodies(bodies, rot, ctx) -> None:
+def move_bodies(bodies, rot, context) -> None:
     """Apply each body's planned move and turn (orientation in the world's representation),
     then clear the force accumulators for the next step."""
+    ctx = context[0]
     for i in range(bodies.shape[0]):
         b = bodies[i]
         if b["kind"] != STATIC:

@@ -208,22 +208,15 @@ def cos_sin(kind: int, rot: np.ndarray, cs: np.ndarray) -> None:
 
 
 @njit
-def unwrap(angle: float, near: float) -> float:
-    """The value of ``angle`` (mod 2 pi) closest to ``near``: keeps an angle continuous."""
-    turns = math.floor((angle - near) / (2.0 * math.pi) + 0.5)
-    return angle - 2.0 * math.pi * turns
-
-
-@njit
 def turn_body(bodies, rot: np.ndarray, i: int, kind: int, d: float, renormalise: bool) -> None:
-    """Turn body i by d radians: its stored orientation, its (cos, sin), and its continuous
-    angle (the stored orientation's angle, unwrapped next to the old angle plus d, so turns
-    accumulate whatever the representation)."""
+    """Turn body i by d radians: its stored orientation, its (cos, sin) read back from it, and
+    its continuous angle, the sum of every turn (so turns accumulate whatever the
+    representation; it differs from the stored orientation's angle by that representation's
+    rounding only)."""
     b = bodies[i]
     turn_row(kind, rot, i, d, renormalise)
-    c, s = cos_sin_row(kind, rot, i)
-    b["cs"][0], b["cs"][1] = c, s
-    b["angle"] = unwrap(math.atan2(s, c), b["angle"] + d)
+    b["cs"][0], b["cs"][1] = cos_sin_row(kind, rot, i)
+    b["angle"] += d
 
 
 @njit

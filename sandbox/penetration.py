@@ -131,12 +131,13 @@ def rebound(contacts, k: int, bodies) -> None:
 
 
 @njit
-def fix_positions(contacts, k: int, joints, bodies, rot, ctx) -> float:
+def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     """The position stage every rigid solver shares: the rebound, then up to
     ``position_iterations`` passes of the penetration fix, each followed by the joints'
     position pass; then each body's orientation turned by what the passes turned. Nothing at
     all when ``settings.position_correction`` is off. Returns the smallest separation the last
     contact pass saw (m, < 0 overlapping)."""
+    ctx = context[0]
     worst = 0.0
     if not ctx["position_correction"]:
         return worst

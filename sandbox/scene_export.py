@@ -33,7 +33,7 @@ def world_to_scene(world) -> dict:
         "name": world.name,
         "gravity": world.gravity.tolist(),
         "dt": world.dt,
-        "settings": world.settings.scene_dict(),
+        "settings": world.settings.scene_dict(),  # contract keys + settings not at default
         "bodies": bodies,
         "joints": [j.to_dict() for j in world.joints],
         "forces": [f.to_dict() for f in world.forces],

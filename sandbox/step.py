@@ -79,10 +79,11 @@ def label_proxies(shapes, bodies, proxies) -> None:
 
 
 @njit
-def find_pairs(shapes, vertices, bodies, proxies, pairs, ctx) -> int:
+def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     """Stage 1 by sweep and prune, keeping the sweep order from step to step: the sorted pair
     list into ``pairs[1]``. Returns the number of pairs, or minus the rows needed when ``pairs``
     is too small (nothing else changed)."""
+    ctx = context[0]
     m = shapes.shape[0]
     proxy_boxes(shapes, vertices, bodies, ctx["contact_margin"], proxies)
     label_proxies(shapes, bodies, proxies)
@@ -97,9 +98,10 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, ctx) -> int:
 
 
 @njit
-def prepare(contacts, k: int, previous, bodies, ctx) -> None:
+def prepare(contacts, k: int, previous, bodies, context) -> None:
     """Stage 3: :func:`sandbox.solvers.common.prepare_contacts`, then the warm-start impulses."""
-    prepare_contacts(contacts, k, bodies, 0.0, ctx)
+    ctx = context[0]
+    prepare_contacts(contacts, k, bodies, 0.0, context)
     found = 0
     if ctx["warm_start"]:
         found = match_previous(contacts, k, previous, ctx["contact_count"][ctx["contact_set"]])
@@ -107,17 +109,20 @@ def prepare(contacts, k: int, previous, bodies, ctx) -> None:
 
 
 @njit
-def warm_start_all(contacts, k: int, joints, bodies, ctx) -> None:
+def warm_start_all(contacts, k: int, joints, bodies, context) -> None:
     """Stage 6: contacts (when warm starting) and joints."""
+    ctx = context[0]
     if ctx["warm_start"]:
         warm_start(contacts, k, bodies)
     warm_start_joints(joints, bodies)
 
 
 @njit
-def store_impulses(k: int, bodies, ctx) -> None:
+def store_impulses(k: int, bodies, context) -> int:
     """Stage 11: the set just written holds the next step's warm-start source; report the
-    first body whose state is not finite (``ctx["diverged"]``, -1 when none)."""
+    first body whose state is not finite (``ctx["diverged"]``, -1 when none). Returns 0, or 1
+    plus that body's index."""
+    ctx = context[0]
     cur = 1 - ctx["contact_set"]
     ctx["contact_set"] = cur
     ctx["contact_count"][cur] = k
@@ -128,37 +133,53 @@ def store_impulses(k: int, bodies, ctx) -> None:
         s = b["com"][0] + b["com"][1] + b["vel"][0] + b["vel"][1] + b["omega"] + b["angle"]
         if not np.isfinite(s):
             ctx["diverged"] = i
-            return
+            return 1 + i
+    return 0
 
 
 # --- the step, in one compiled call ------------------------------------------------------------
 @njit
-def fast_step(bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, ctx) -> int:
+def fast_step(
+    bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context
+) -> int:
     """The stages of :func:`staged_step` in one compiled call (sweep and prune, the iterative
-    solver, an Euler integrator, no continuous collision). Returns 0, or minus the pair rows
-    needed when ``pairs`` is too small (nothing changed: grow the buffers and call again)."""
+    solver, an Euler integrator, no continuous collision). Returns 0, minus the pair rows
+    needed when ``pairs`` is too small (nothing changed: grow the buffers and call again), or 1
+    plus the index of a body whose state stopped being finite."""
+    ctx = context[0]
     model = (bodies, shapes, vertices, joints, generators)
     contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
     k = 0
     if shapes.shape[0] >= 2:
-        npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, ctx)
+        npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
         if npairs < 0:
             return npairs
         k = collide_into(
             pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
         )
-        prepare(contacts, k, previous, bodies, ctx)
-    integrate_velocities(model, ctx)
-    prepare_joints(joints, bodies, ctx)
-    warm_start_all(contacts, k, joints, bodies, ctx)
-    iterative.solve(contacts, k, joints, bodies, ctx)
+        prepare(contacts, k, previous, bodies, context)
+    integrate_velocities(model, context)
+    prepare_joints(joints, bodies, context)
+    warm_start_all(contacts, k, joints, bodies, context)
+    iterative.solve(contacts, k, joints, bodies, context)
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
     plan_motion(bodies, ctx["dt"])
-    move_bodies(bodies, rot, ctx)
-    fix_positions(contacts, k, joints, bodies, rot, ctx)
+    move_bodies(bodies, rot, context)
+    fix_positions(contacts, k, joints, bodies, rot, context)
     ctx["contact_points"] = count_points(contacts, k)
-    store_impulses(k, bodies, ctx)
-    return 0
+    return store_impulses(k, bodies, context)
+
+
+@njit
+def free_step(bodies, rot, shapes, vertices, joints, generators, context) -> int:
+    """:func:`fast_step` for a world with fewer than two shapes and no joints (nothing can
+    touch anything): the velocities, then the positions. Fewer arrays to hand over: this is
+    the whole cost of stepping a single body."""
+    integrate_velocities((bodies, shapes, vertices, joints, generators), context)
+    plan_motion(bodies, context[0]["dt"])
+    move_bodies(bodies, rot, context)
+    context[0]["contact_points"] = 0
+    return store_impulses(0, bodies, context)
 
 
 # --- the step, stage by stage from Python ------------------------------------------------------
@@ -193,7 +214,9 @@ def staged_pairs(world, a, ctx) -> int:
     from sandbox.broadphase import find_pairs as find_pairs_by_name
 
     if world.settings.broadphase == "sap":
-        return find_pairs(a.shapes, a.vertices, a.bodies, a.buffers.proxies, a.buffers.pairs, ctx)
+        return find_pairs(
+            a.shapes, a.vertices, a.bodies, a.buffers.proxies, a.buffers.pairs, a.context
+        )
     proxies = a.buffers.proxies
     proxy_boxes(a.shapes, a.vertices, a.bodies, ctx["contact_margin"], proxies)
     label_proxies(a.shapes, a.bodies, proxies)
@@ -213,7 +236,8 @@ def staged_pairs(world, a, ctx) -> int:
 
 
 def staged_step(world, timer: StageTimer | None = None) -> int:
-    """One step, stage by stage (any settings). Returns 0, or minus the pair rows needed."""
+    """One step, stage by stage (any settings). Returns 0, minus the pair rows needed, or 1
+    plus the index of a body whose state stopped being finite."""
     a = world.arrays()
     ctx = a.context[0]
     clock = timer if timer is not None else _NoTimer()
@@ -238,28 +262,28 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
             contacts,
         )
         clock.lap("collide")
-        prepare(contacts, k, previous, a.bodies, ctx)
+        prepare(contacts, k, previous, a.bodies, a.context)
         clock.lap("prepare_contacts")
-    integrate_velocities(model, ctx)
+    integrate_velocities(model, a.context)
     clock.lap("integrate_velocities")
-    prepare_joints(a.joints, a.bodies, ctx)
+    prepare_joints(a.joints, a.bodies, a.context)
     clock.lap("prepare_joints")
-    warm_start_all(contacts, k, a.joints, a.bodies, ctx)
+    warm_start_all(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("warm_start")
-    SOLVERS[world.settings.solver].solve(contacts, k, a.joints, a.bodies, ctx)
+    SOLVERS[world.settings.solver].solve(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
     clock.lap("restitution")
     plan_motion(a.bodies, ctx["dt"])
     if world.has_ccd:
-        limit_ccd_motion(a.bodies, a.shapes, a.vertices, ctx)
-    move_bodies(a.bodies, a.rot, ctx)
+        limit_ccd_motion(a.bodies, a.shapes, a.vertices, a.context)
+    move_bodies(a.bodies, a.rot, a.context)
     clock.lap("integrate_positions")
-    fix_positions(contacts, k, a.joints, a.bodies, a.rot, ctx)
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
     clock.lap("fix_positions")
     ctx["contact_points"] = count_points(contacts, k)
-    store_impulses(k, a.bodies, ctx)
+    status = store_impulses(k, a.bodies, a.context)
     clock.lap("store_impulses")
     if timer is not None:
         timer.steps += 1
-    return 0
+    return status

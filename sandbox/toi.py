@@ -331,11 +331,12 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance)
 
 
 @njit
-def limit_ccd_motion(bodies, shapes, vertices, ctx) -> None:
+def limit_ccd_motion(bodies, shapes, vertices, context) -> None:
     """Conservative advancement for the ``ccd`` bodies: each moves only up to its time of
     impact, a quarter of the contact margin short of touching (``motion`` and ``motion_turn``
     scaled in place); the next step's narrowphase then finds the contact (retroactive detection
     takes over)."""
+    ctx = context[0]
     margin = ctx["contact_margin"]
     target = 0.25 * margin if margin > 0.0 else LINEAR_SLOP
     pairs = swept_pairs(bodies, shapes)

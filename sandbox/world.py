@@ -19,11 +19,12 @@ from sandbox.contact import ContactBuffers, Manifolds, find_contacts
 from sandbox.context import fill_context
 from sandbox.errors import SimulationError
 from sandbox.forces import MAX_GENERATORS, ForceGenerator
+from sandbox.jit import entry
 from sandbox.projectile import advance_analytic
 from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SPRING
 from sandbox.settings import Settings
 from sandbox.shape_records import Geometry, build_geometry
-from sandbox.step import fast_step, staged_step
+from sandbox.step import fast_step, free_step, staged_step
 
 _EULERS = ("semi_implicit_euler", "explicit_euler")
 
@@ -61,6 +62,9 @@ class World:
     def __init__(
         self, gravity=(0.0, -9.81), dt: float = 1.0 / 60.0, name: str = "world", **settings
     ):
+        from sandbox.arguments import check_world_arguments  # the API's checks (SceneError)
+
+        check_world_arguments(gravity, dt, name, settings)
         if not dt > 0:
             raise ValueError("dt: must be > 0")
         self.name = name
@@ -88,6 +92,9 @@ class World:
         self._analytic_ref = None
         self._dirty = True  # shapes, masses, joints, forces or settings changed: _prepare()
         self._fast = False
+        self._step_dt = 0.0  # the dt the step context holds
+        self._held = False  # a Manifolds view of the contact buffers was handed out
+        self._run = None  # the way a step runs (see _choose_path)
         self.has_ccd = False
         self._watch_settings()
 
@@ -310,46 +317,56 @@ class World:
             and not self.has_ccd
         )
         fill_context(self.context[0], self.settings, self.gravity, dt)
+        self._step_dt = dt
         self._dirty = False
+        self._choose_path()
 
     # --- the step -----------------------------------------------------------------------------
     def step(self, dt: float | None = None) -> None:
         """Advance the world by ``dt`` seconds (default: the world's dt)."""
-        dt = self.dt if dt is None else float(dt)
-        if not dt > 0:
-            raise ValueError("dt: must be > 0")
-        ctx = self.context[0]
-        if self._dirty or ctx["dt"] != dt:
+        if dt is None:
+            dt = self.dt
+        else:
+            dt = float(dt)
+            if not dt > 0:
+                raise ValueError("dt: must be > 0")
+        if self._dirty or dt != self._step_dt:
             self._prepare(dt)
         for body in self._controlled:
             body.controller(body, self)
         if self._python_forces:
             self._python_force_step()
-        if self.settings.integrator == "analytic":
-            advance_analytic(self, dt)
-        else:
-            self._step_records(ctx)
+        if self._held:
+            self._held = self._buffers.release(1 - int(self.context[0]["contact_set"]))
+        status = self._run()
+        while status < 0:  # the pair buffer was too small: nothing moved yet
+            self._buffers.reserve(-status)
+            self._choose_path()
+            status = self._run()
         self.time += dt
         self.steps += 1
         self._found_stats = None
-        if ctx["diverged"] >= 0:
-            raise self._divergence(int(ctx["diverged"]))
+        if status > 0:
+            raise self._divergence(status - 1)
 
-    def _step_records(self, ctx) -> None:
-        buffers = self._buffers
-        buffers.release(1 - int(ctx["contact_set"]))
-        g = self._geometry
-        while True:
-            if self._fast and self.timer is None:
-                model = (self.state, self.rot, g.table, g.vertices, self.joint_table)
-                status = fast_step(
-                    *model, self.generator_table, buffers.sets, buffers.proxies, buffers.pairs, ctx
-                )
-            else:
-                status = staged_step(self, self.timer)
-            if status >= 0:
-                return
-            buffers.reserve(-status)  # nothing moved yet: grow the buffers and run again
+    def _choose_path(self) -> None:
+        """How :meth:`step` runs the stages (after :meth:`_prepare` or a buffer grew): one
+        compiled call for the usual world (:func:`sandbox.step.fast_step`, or ``free_step``
+        when nothing can touch), the stages one by one otherwise, the closed form for
+        ``integrator: analytic``."""
+        s, g, b = self.settings, self._geometry, self._buffers
+        if s.integrator == "analytic":
+            self._run = lambda: advance_analytic(self, self._step_dt) or 0
+            return
+        fast = self._fast and self.timer is None
+        model = (self.state, self.rot, g.table, g.vertices, self.joint_table, self.generator_table)
+        if fast and len(g) < 2 and not len(self.joint_table):
+            self._run = _bind(entry(free_step, *model, self.context), *model, self.context)
+        elif fast:
+            args = (*model, b.sets, b.proxies, b.pairs, self.context)
+            self._run = _bind(entry(fast_step, *args), *args)
+        else:
+            self._run = lambda: staged_step(self, self.timer)
 
     def _python_force_step(self) -> None:
         """Force objects without a record add their force at the step's starting state."""
@@ -371,6 +388,7 @@ class World:
         first step."""
         if self._buffers is None or self.steps == 0:
             return None
+        self._held = True
         return self._buffers.manifolds(self.context[0])
 
     @property
@@ -443,3 +461,8 @@ class World:
 
     def __repr__(self) -> str:
         return f"World({self.name!r}, {len(self.bodies)} bodies, t={self.time:.4f})"
+
+
+def _bind(function, *args):
+    """``function`` with ``args`` bound: a call with no arguments of its own."""
+    return lambda: function(*args)

@@ -37,9 +37,10 @@ def test_switching_representation_every_30_steps_matches_never_switching():
     for step in range(300):
         if step % 30 == 0:
             switching.settings.orientation = REPRESENTATIONS[(step // 30) % 3]
-            assert switching.rot.shape[1] == {"angle": 1, "matrix": 4, "complex": 2}[
-                switching.settings.orientation
-            ]
+            assert (
+                switching.rot.shape[1]
+                == {"angle": 1, "matrix": 4, "complex": 2}[switching.settings.orientation]
+            )
         plain.step()
         switching.step()
     assert np.max(np.abs(state(plain) - state(switching))) < 1e-9

@@ -79,11 +79,11 @@ def solve(w, m, push=0.0):
     the velocities of the start of the step), then this step's free motion adds ``push``
     (m/s) to the disc's x velocity, as gravity would, then solve and restitution."""
     w._prepare(w.dt)
-    ctx, k = w.context[0], len(m)
-    prepare_contacts(m.records, k, w.state, 0.0, ctx)
+    k = len(m)
+    prepare_contacts(m.records, k, w.state, 0.0, w.context)
     w.vel[0, 0] += push
-    SOLVERS[w.settings.solver].solve(m.records, k, w.joint_table, w.state, ctx)
-    restitution(m.records, k, w.state, ctx["restitution_threshold"])
+    SOLVERS[w.settings.solver].solve(m.records, k, w.joint_table, w.state, w.context)
+    restitution(m.records, k, w.state, w.settings.restitution_threshold)
 
 
 def normal_speed(w, point, n=(1.0, 0.0)):
@@ -274,7 +274,7 @@ def overlap_world(method, static_a=False):
 def prepare(w, m):
     """The prepare stage on hand-built contacts (lever arms in each body's frame)."""
     w._prepare(w.dt)
-    prepare_contacts(m.records, len(m), w.state, 0.0, w.context[0])
+    prepare_contacts(m.records, len(m), w.state, 0.0, w.context)
 
 
 def correct(w, m, passes=1):
@@ -282,7 +282,7 @@ def correct(w, m, passes=1):
     smallest separation seen in the last pass (m)."""
     w.settings.position_iterations = passes
     w._prepare(w.dt)
-    return penetration.fix_positions(m.records, len(m), w.joint_table, w.state, w.rot, w.context[0])
+    return penetration.fix_positions(m.records, len(m), w.joint_table, w.state, w.rot, w.context)
 
 
 @pytest.mark.parametrize(

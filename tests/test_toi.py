@@ -153,7 +153,7 @@ def test_ccd_fractions_and_limit_motion():
     assert abs(frac[1] - (0.94 - 0.005) / (200.0 * DT)) < 0.00125 / (200.0 * DT) + 1e-12
     assert frac[0] == 1.0 and frac[2] == 1.0 and frac[3] == 1.0  # resting ball is not frozen
 
-    limit_ccd_motion(bodies, g.table, g.vertices, world.context[0])
+    limit_ccd_motion(bodies, g.table, g.vertices, world.context)
     step = bodies["motion"]
     np.testing.assert_allclose(step[[0, 2, 3]], dp[[0, 2, 3]], atol=0)
     gap = -0.01 - (-1.0 + step[1, 0] + 0.05)  # wall face x = -0.01, bullet front x + 0.05

@@ -26,8 +26,9 @@ from sandbox.records import PIN, PIVOT
 
 
 @njit
-def prepare_joints(joints, bodies, ctx) -> None:
+def prepare_joints(joints, bodies, context) -> None:
     """Every pin and pivot prepared for a step of ``ctx["dt"]``."""
+    ctx = context[0]
     warm = ctx["warm_start"]
     for i in range(joints.shape[0]):
         j = joints[i]

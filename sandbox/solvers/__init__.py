@@ -5,7 +5,7 @@ Resolution"), all over the same CONTACT and JOINT records (:mod:`sandbox.records
 - ``shock``: sequential impulses, then shock propagation layer by layer;
 - ``iterative``: sequential impulses, accumulated and warm-started (box2d-lite).
 
-Each module offers ``solve(contacts, k, joints, bodies, ctx)``, the step's ``solve`` stage
+Each module offers ``solve(contacts, k, joints, bodies, context)``, the step's ``solve`` stage
 (:mod:`sandbox.step`); what they share is in :mod:`sandbox.solvers.common`.
 """
 

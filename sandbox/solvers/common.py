@@ -109,10 +109,11 @@ def prepare_block(c) -> None:
 
 
 @njit
-def prepare_contacts(contacts, k: int, bodies, beta: float, ctx) -> None:
+def prepare_contacts(contacts, k: int, bodies, beta: float, context) -> None:
     """Prepare the first ``k`` contacts: copy the bodies' inverse masses, zero the impulses,
     then :func:`prepare_point` and :func:`prepare_block`. ``beta``: the Baumgarte factor of the
     velocity bias (the rigid solvers pass 0 and fix overlap on positions instead)."""
+    ctx = context[0]
     inv_dt, slop = ctx["inv_dt"], ctx["slop"]
     for i in range(k):
         c = contacts[i]

@@ -157,8 +157,9 @@ def sweep(contacts, k: int, bodies, accumulate: bool) -> None:
 
 
 @njit
-def solve(contacts, k: int, joints, bodies, ctx) -> None:
+def solve(contacts, k: int, joints, bodies, context) -> None:
     """``settings.iterations`` sweeps; in each, the joints and then the contacts."""
+    ctx = context[0]
     for _ in range(ctx["iterations"]):
         solve_joint_velocities(joints, bodies, ctx["accumulate"])
         sweep(contacts, k, bodies, ctx["accumulate"])

@@ -85,8 +85,9 @@ def resolve_each_once(contacts, k: int, bodies, gravity_speed, threshold: float)
 
 
 @njit
-def solve(contacts, k: int, joints, bodies, ctx) -> None:
+def solve(contacts, k: int, joints, bodies, context) -> None:
     """Joints first (``settings.iterations`` passes), then each contact once, in turn."""
+    ctx = context[0]
     gravity_speed = gravity_speeds(contacts, k, bodies)
     for _ in range(ctx["iterations"]):
         solve_joint_velocities(joints, bodies, ctx["accumulate"])

@@ -133,8 +133,9 @@ def shock_pass(contacts, k: int, bodies) -> int:
 
 
 @njit
-def solve(contacts, k: int, joints, bodies, ctx) -> None:
+def solve(contacts, k: int, joints, bodies, context) -> None:
     """Relaxation sweeps (contacts and joints), then the shock pass."""
-    relax(contacts, k, joints, bodies, ctx)
+    ctx = context[0]
+    relax(contacts, k, joints, bodies, context)
     if k > 0:
         ctx["shock_layers"] = shock_pass(contacts, k, bodies)
