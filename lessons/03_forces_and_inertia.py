@@ -247,18 +247,19 @@ steps = int(round(DURATION / DT))
 OMEGA = "omega (rad/s)"  # the series drawn beside the animation
 
 
-def make_world() -> tuple[World, Body]:
+def make_world(x0: float = 0.0) -> tuple[World, Body]:
     world = World(gravity=(0.0, 0.0), dt=DT)
-    plate = world.add_body(Body(name="plate", type="dynamic", position=(0.0, 0.0), angle=0.0))
+    plate = world.add_body(Body(name="plate", type="dynamic", position=(x0, 0.0), angle=0.0))
     plate.add_shape(Box(width=PLATE[0], height=PLATE[1], density=DENSITY))
     return world, plate
 
 
 def run(lever_in_body: bool) -> tuple[Recording, dict]:
-    """Push the plate for DURATION s; returns the recording and per-step series."""
-    world, plate = make_world()
+    """Push the plate for DURATION s; returns the recording and per-step series. The body-lever
+    plate starts 3 m to the right, so that the animation shows the two side by side."""
+    world, plate = make_world(3.0 if lever_in_body else 0.0)
     anchor = plate.local_point(np.asarray(plate.center_of_mass) + r_lever)  # body frame
-    rec = Recording.from_world(world)
+    rec = Recording.from_world(world, draw="forces")  # keep the applied force for drawing
     rec.capture(world, **{OMEGA: 0.0})
     out = {k: [] for k in ("t", "omega", "vy", "tau", "angle")}
     for _ in range(steps):
@@ -346,9 +347,13 @@ fig.tight_layout()
 save_figure(fig, OUT / "force_and_torque.png", dpi=100)
 
 # %% [markdown]
-# The animation shows both runs overlaid, with $\omega(t)$ beside them: the two plates rise
+# The animation shows both runs side by side, with $\omega(t)$ beside them: the two plates rise
 # together (same $\mathbf{f}$, same $m$) but only the one pushed on a world-fixed lever keeps
-# spinning up.
+# spinning up. The force is drawn as the engine applies it to the body (the `forces` debug
+# layer): the straight arrow is $\mathbf{f}$ moved to the centre of mass, the curved one the
+# torque $\tau = \mathbf{r}\times\mathbf{f}$ that moving it there leaves (the same push, as
+# far as the motion is concerned). The curved arrow of the body-fixed lever shrinks to nothing
+# as its lever turns into line with the force.
 
 # %%
 gif = render_gif(
@@ -360,79 +365,6 @@ gif = render_gif(
     panel=OMEGA,
     trail=True,
     stride=GIF_EVERY,
+    draw="forces",
 )
 print(f"wrote {len(world_rec)} frames to {gif.name}")
-
-# %% [markdown]
-# ## Exercises
-#
-# Predict first, then run the cell under the question, then open the answer.
-#
-# **1.** Push with the same $\mathbf{f} = (0, 2)$ N, but at $\mathbf{r} = (0, 0.8)$ m, straight
-# above the centre of mass (lever fixed in the world). What are $a$ and $\alpha$?
-
-
-# %%
-def push(lever, plate=PLATE, seconds: float = 0.5) -> tuple[float, float]:
-    """(a_y, alpha) fitted over ``seconds`` of a push F at c + lever (lever fixed in the world)."""
-    world = World(gravity=(0.0, 0.0), dt=DT)
-    body = world.add_body(Body(name="plate"))
-    body.add_shape(Box(width=plate[0], height=plate[1], density=DENSITY))
-    t, vy, w = [], [], []
-    for _ in range(int(round(seconds / DT))):
-        body.apply_force(F, point=np.asarray(body.center_of_mass) + np.asarray(lever))
-        world.step()
-        t.append(world.time)
-        vy.append(body.velocity[1])
-        w.append(body.angular_velocity)
-    return float(np.polyfit(t, vy, 1)[0]), float(np.polyfit(t, w, 1)[0])
-
-
-a1, alpha1 = push((0.0, 0.8))
-print(f"lever (0, 0.8) m: a = {a1:.4f} m/s^2, alpha = {alpha1:.4f} rad/s^2")
-
-# %% [markdown]
-# <details><summary>Answer</summary>
-#
-# $\tau = r_x f_y - r_y f_x = 0 \times 2 - 0.8 \times 0 = 0$: the force's line of action passes
-# through the centre of mass, so it cannot turn the plate, however far from the centre it is
-# applied. The plate still accelerates at $F / m = 2 / 2 = 1$ m/s$^2$. The run prints $a = 1$,
-# $\alpha = 0$.
-#
-# </details>
-#
-# **2.** Add a third point mass of 1 kg at $x = 1.0$ m to the slides' example ($1$ kg at 0,
-# $2$ kg at $0.6$ m). Where is the centre of mass, and what is $I$ about it?
-
-# %%
-c3 = center_of_mass((1.0, 2.0, 1.0), (0.0, 0.6, 1.0))
-print(
-    f"c = {c3:.4f} m, I = {moment_of_inertia((1.0, 2.0, 1.0), (0.0, 0.6, 1.0), axis=c3):.4f} kg m^2"
-)
-
-# %% [markdown]
-# <details><summary>Answer</summary>
-#
-# $c = (1 \times 0 + 2 \times 0.6 + 1 \times 1.0) / 4 = 2.2 / 4 = 0.55$ m, and
-# $I = 1 \times 0.55^2 + 2 \times 0.05^2 + 1 \times 0.45^2 = 0.3025 + 0.005 + 0.2025 = 0.51$
-# kg m$^2$. The printed values match.
-#
-# </details>
-#
-# **3.** Make the plate twice as wide ($4 \times 1$ m, same density) and push it as in the
-# lesson ($\mathbf{f} = (0, 2)$ N at $\mathbf{r} = (0.8, 0)$ m). How do $a$ and $\alpha$ change?
-
-# %%
-a3, alpha3 = push(LEVER, plate=(4.0, 1.0))
-print(f"4 x 1 m plate: a = {a3:.4f} m/s^2, alpha = {alpha3:.4f} rad/s^2 "
-      f"(2 x 1 m plate: {a_theory:.4f}, {alpha_theory:.4f})")  # fmt: skip
-
-# %% [markdown]
-# <details><summary>Answer</summary>
-#
-# The mass doubles ($m = 4$ kg), so $a = 2/4 = 0.5$ m/s$^2$: half. The moment grows much more,
-# $I = m(w^2 + h^2)/12 = 4 \times 17 / 12 = 5.667$ kg m$^2$ against $2 \times 5 / 12 = 0.833$:
-# 6.8 times, because mass far from the centre counts with $r^2$. The torque is unchanged,
-# $0.8 \times 2 = 1.6$ N m, so $\alpha = 1.6 / 5.667 = 0.282$ rad/s$^2$ instead of $1.92$.
-#
-# </details>
