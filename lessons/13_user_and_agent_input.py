@@ -148,6 +148,10 @@ save_figure(fig, OUT / "autopilot.png", dpi=100)
 # lander. Add a side wind: the autopilot notices the drift and leans into it, the script flies
 # the calm-air commands and misses.
 #
+# The animation draws what the controllers do, with the `forces` debug layer: the thrust and
+# the wind summed into one force arrow at each lander's centre of mass, and the torque of the
+# uneven thrusters as a curved arrow.
+#
 # Note the autopilot's own miss in the wind: a PD controller balances a steady force $F$ with
 # a steady offset, $m k_p \Delta x = F$, i.e. $\Delta x = F / (m k_p)$ (an integral term
 # would remove it).
@@ -162,10 +166,10 @@ print(f"identical: {replayed.position == lander.position and replayed.angle == l
 windy_world, windy = lander_world(WIND)
 windy_pilot = LanderController(TARGET, lander_thrusters(1.0, 0.5, MAX_THRUST))
 windy.controller = windy_pilot
-windy_rec = record(windy_world, STEPS, every=3, series={DIST: distance})
+windy_rec = record(windy_world, STEPS, every=3, series={DIST: distance}, draw="forces")
 script_world, scripted = lander_world(WIND)
 scripted.controller = Scripted.from_log(pilot.log, lander_thrusters(1.0, 0.5, MAX_THRUST))
-script_rec = record(script_world, STEPS, every=3, series={DIST: distance})
+script_rec = record(script_world, STEPS, every=3, series={DIST: distance}, draw="forces")
 
 # a hand-written script (a player's keys): climb, coast up, lean right, fly, level, lean back
 # to brake, level, hover. Each lean is a push on one side then the other (start and stop the
@@ -221,6 +225,7 @@ gif = render_gif(
     labels=["autopilot (feedback)", "script (open loop)"],
     panel=DIST,
     trail=True,
+    draw="forces",
 )
 print(f"wrote {len(windy_rec)} frames to {gif.name}")
 
