@@ -251,14 +251,19 @@ save_figure(fig, OUT / "penetration.png", dpi=100)
 runs = []
 for option in OPTIONS:
     world, _ = corner_world(option)
-    runs.append(record(world, steps, every=GIF_EVERY, series={"depth (m)": max_depth}))
+    runs.append(record(world, steps, every=GIF_EVERY, draw="contacts,normals", energy=True))
 gif = render_gif(
     runs, OUT / "corner_drop.gif", fps=15, size_px=360, labels=[LABELS[o] for o in OPTIONS],
-    colors=[COLORS[o] for o in OPTIONS], panel="depth (m)", view=(-1.2, 2.2, -0.6, 1.6),
+    colors=[COLORS[o] for o in OPTIONS], panel="energy-bars", view=(-1.2, 2.2, -0.6, 1.6),
+    draw="contacts,normals",
 )  # fmt: skip
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
 # %% [markdown]
+# The animation draws the contact points and normals of each run and, beside it, its energy
+# bars: the total energy of options 1 and 2 *rises* in the first step (the lift, energy from
+# nowhere), and the "lost" bar goes negative by as much; option 3 adds less.
+#
 # **Which handles rotation?** Only option 3. Options 1 and 2 translate along the normal: a
 # corner stuck in a surface is pushed out by moving the whole body, as if it could not turn, so
 # the fix lifts the centre of mass further than needed and adds potential energy (in the
