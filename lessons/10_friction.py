@@ -40,6 +40,7 @@ import numpy as np
 import sandbox
 from sandbox.body import Body
 from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.overlays import Layers
 from sandbox.recording import record
 from sandbox.render import render_gif
 from sandbox.shapes import Box
@@ -187,13 +188,22 @@ bx.grid(alpha=0.3)
 fig.tight_layout()
 save_figure(fig, OUT / "incline.png", dpi=100)
 
+# %% [markdown]
+# The animation draws each box's contact points with their normal impulses (magenta) and
+# friction impulses (teal, along the slope) of the last step: on the stuck box ($\mu = 0.6$)
+# friction holds exactly the pull down the slope, on the sliding ones it is capped at $\mu$
+# times the normal impulse; the lower corner of each box carries more of the normal impulse.
+
 # %%
 runs = []
 for mu in MUS:
     world, box, _, along = incline_world(GIF_ANGLE, mu)
     speed = {"v down the slope (m/s)": lambda w, i=box.index, u=along: -float(w.vel[i] @ u)}
-    runs.append(record(world, int(round(1.5 / DT)), every=GIF_EVERY, series=speed))
-gif = render_gif(runs, OUT / "incline.gif", fps=20, size_px=360,
+    runs.append(record(world, int(round(1.5 / DT)), every=GIF_EVERY, series=speed,
+                       draw="contacts,impulses"))  # fmt: skip
+layers = Layers("contacts,impulses", impulse=15.0)  # m of arrow per N s: each corner of a box
+# carries about 0.07 N s per step, drawn about 1 m long
+gif = render_gif(runs, OUT / "incline.gif", fps=20, size_px=360, draw=layers,
                  labels=[f"mu = {mu}" for mu in MUS], panel="v down the slope (m/s)")  # fmt: skip
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
