@@ -48,6 +48,8 @@ from matplotlib.patches import Polygon as PolygonPatch
 
 from sandbox import Body, Box, Circle, Polygon, World
 from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.recording import record
+from sandbox.render import render_gif
 
 # knobs
 SINK = 0.08  # m, how far the shapes of each case are pushed into each other
@@ -276,6 +278,30 @@ save_figure(fig, OUT / "manifolds.png", dpi=90)
 # - **corner-corner**: the rare case gets no special treatment; the same clipping gives two
 #   points a few millimetres apart, with the normal of one of the faces next to the tips.
 # - **circles**: always one point.
+#
+# ### The manifold over time
+#
+# A box dropped corner first onto the ground, drawn with the `contacts` and `normals` debug
+# layers (filled dots: touching points; hollow: speculative points within the contact margin,
+# not yet touching): it lands on one corner (vertex-face: one point, hollow while the corner is
+# still within the margin above the ground), then tips onto its side (edge-face: two points).
+
+# %%
+drop = World()
+ground_d = drop.add_body(Body(name="ground", type="static"))
+ground_d.add_shape(Box(4.0, 0.4, offset=(0.0, -0.2)))
+box_d = drop.add_body(Body(name="box", position=(0.0, 1.0), angle=0.5))
+box_d.add_shape(Box(0.8, 0.5))
+rec_d = record(drop, 90, draw="contacts,normals")
+touching = [int(np.sum(rows[:, 6] >= 0.0)) for rows in rec_d.overlays.contacts]  # depth >= 0
+first = next(k for k, p in enumerate(touching) if p)
+print(
+    f"touching contact points per frame: {touching[first]} at first touch (frame {first}), "
+    f"{touching[-1]} at the end"
+)
+gif = render_gif(rec_d, OUT / "manifold_over_time.gif", fps=30, size_px=360,
+                 draw="contacts,normals", view=(-1.2, 1.2, -0.3, 1.5))  # fmt: skip
+print(f"wrote {len(rec_d)} frames to {gif.name}")
 
 # %% [markdown]
 # ## The slides' circle formulas, by hand and by the engine
