@@ -1,4 +1,4 @@
-"""The command line: ``sandbox simulate | compare | lessons`` (also ``python -m sandbox``).
+"""The command line: ``sandbox simulate | compare | lessons | scenes`` (also ``python -m sandbox``).
 
 One module per command (``sandbox/cli/<command>.py``, each with ``add_parser`` and ``run``);
 this one assembles the parser and turns every failure into one ``error:`` line.
@@ -13,10 +13,10 @@ import argparse
 import os
 import sys
 
-from sandbox.cli import compare, lessons, simulate
+from sandbox.cli import compare, lessons, scenes, simulate
 from sandbox.cli.common import CliError, Parser
 
-COMMANDS = (simulate, compare, lessons)
+COMMANDS = (simulate, compare, lessons, scenes)
 
 __all__ = ["CliError", "build_parser", "main"]
 
