@@ -45,7 +45,7 @@ from matplotlib.patches import Rectangle
 import sandbox
 from sandbox import Body, Box, Circle, World
 from sandbox.geometry import box_vertices
-from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path, show_gif
 from sandbox.render import record, render_gif
 from sandbox.toi import distance, time_of_impact
 
@@ -414,4 +414,5 @@ gif = render_gif(
     view=(-0.5, 11.0, -2.6, 2.6),
     axes=True,
 )
+show_gif(gif)
 print(f"wrote {len(recordings['ccd'])} frames to {gif.name}")

@@ -34,7 +34,7 @@ import numpy as np
 
 from sandbox import Body, Box, Circle, World
 from sandbox.joints import PinJoint, PivotJoint
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -296,4 +296,5 @@ rec = record(
     series={ANGLE: lambda w: math.degrees(math.atan2(bob.position[0] + 6, -bob.position[1]))},
 )
 gif = render_gif(rec, OUT / "joints.gif", fps=30, size_px=360, panel=ANGLE, trail=40)
+show_gif(gif)
 print(f"wrote {len(rec)} frames to {gif.name}")

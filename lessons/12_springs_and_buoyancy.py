@@ -35,7 +35,7 @@ from sandbox import Body, Box, Circle, World
 from sandbox.buoyancy import box_draft, disc_draft
 from sandbox.forces import Buoyancy
 from sandbox.joints import SpringJoint
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.pymunk_bridge import PymunkScene
 from sandbox.recording import record
 from sandbox.render import render_gif
@@ -229,4 +229,5 @@ fig.tight_layout()
 save_figure(fig, OUT / "sinking.png", dpi=100)
 
 gif = render_gif(rec, OUT / "floating.gif", fps=30, size_px=360, panel=HEIGHT)
+show_gif(gif)
 print(f"wrote {len(rec)} frames to {gif.name}")

@@ -37,7 +37,7 @@ import numpy as np
 from sandbox import Body, Box, Circle, World
 from sandbox.controllers import LanderController, Scripted, lander_thrusters
 from sandbox.forces import ConstantForce
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -211,4 +211,5 @@ gif = render_gif(
     panel=DIST,
     trail=True,
 )
+show_gif(gif)
 print(f"wrote {len(windy_rec)} frames to {gif.name}")

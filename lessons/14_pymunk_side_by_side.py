@@ -41,7 +41,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from sandbox.compare import compare
-from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path, show_image
 from sandbox.scene import read_scene_file, validate_scene
 
 # knobs
@@ -68,8 +68,8 @@ def load(name: str) -> dict:
 
 
 def run(name: str, variants=None):
-    """Compare one scene; outputs go to OUT/<name>/."""
-    return compare(
+    """Compare one scene; outputs go to OUT/<name>/ (figures shown inline in a notebook)."""
+    result = compare(
         load(name),
         STEPS[name],
         OUT / name,
@@ -79,6 +79,9 @@ def run(name: str, variants=None):
         view=VIEWS[name],
         quiet=True,
     )
+    for path in result.files.values():
+        show_image(path)
+    return result
 
 
 def upward_crossings(t: np.ndarray, x: np.ndarray) -> np.ndarray:
