@@ -55,6 +55,7 @@ def run(args: argparse.Namespace) -> int:
     from sandbox.bundled import lessons_folder
     from sandbox.course.book import write_book
     from sandbox.course.catalogue import find_lessons, pick
+    from sandbox.course.links import book_problems
     from sandbox.course.runner import INSTALL_HINT, missing_notebook_tools
 
     lessons = find_lessons()
@@ -77,6 +78,9 @@ def run(args: argparse.Namespace) -> int:
     book = write_book(lessons, outputs, note)
     failed = [o.lesson.stem for o in outcomes if not o.ok]
     print(f"course book: {book}")
+    problems = book_problems(book)
+    if problems:
+        print(f"warning: course book: {len(problems)} problems, e.g. {problems[0]}")
     if failed:
         print(f"error: lessons: {len(failed)} failed: {', '.join(failed)}", file=sys.stderr)
         return 1
