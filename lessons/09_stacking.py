@@ -261,7 +261,7 @@ def stacking(scene: str = "stack", solver: str = "iterative", iterations: int = 
     bx.plot(r["t"], np.maximum(-r["err"], 1e-6), color="C0", label="top box drop (m)")
     bx.plot(r["t"], np.maximum(r["pen"], 1e-6), color="C3", label="deepest overlap (m)")
     bx.axhline(STANDS, color="k", ls="--", lw=1, label=f"stands: drop < {STANDS} m")
-    bx.set(yscale="log", ylim=(1e-6, 20), xlabel="t (s)", ylabel="m (1e-6 and below: 1e-6)",
+    bx.set(yscale="log", ylim=(1e-6, 20), xlabel="t (s)", ylabel="length (m), 1e-6 at least",
            title=f"top drop after {DURATION:g} s: {r['drop']:.2e} m")  # fmt: skip
     bx.legend(fontsize=8, loc="lower right")
     bx.grid(alpha=0.3)

@@ -76,7 +76,7 @@ def explore(draw: Callable[..., Any], path: str | os.PathLike, **controls: Contr
     it; in a live notebook with ipywidgets, add one control per keyword of ``controls`` that
     reruns ``draw`` with the new value and redraws. Returns ``path``."""
     from sandbox.atomic import atomic_write_bytes
-    from sandbox.lessonkit import show_image
+    from sandbox.lessonkit import ShownPath, show_image
     from sandbox.notebook import in_kernel
 
     defaults = check_controls(draw, controls)
@@ -90,7 +90,7 @@ def explore(draw: Callable[..., Any], path: str | os.PathLike, **controls: Contr
             pass
         else:
             _display_live(draw, controls, defaults, png, path)
-            return path
+            return ShownPath(path)
     return show_image(path)
 
 

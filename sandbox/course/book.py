@@ -37,7 +37,8 @@ a:hover { text-decoration: underline; }
 .opening { color: #3b4555; font-size: 14px; }
 .links { margin-top: 8px; font-weight: 600; }
 .links a { margin-right: 14px; }
-.files { margin: 6px 0 0; padding-left: 18px; font-size: 13px; columns: 2; }
+.files { margin: 8px 0 0; padding: 0; font-size: 13px; list-style: none; display: flex;
+  flex-wrap: wrap; gap: 2px 16px; }
 .missing { color: #8a94a3; font-size: 13px; }
 math { font-size: 105%; }
 """
@@ -64,7 +65,8 @@ def card(lesson: Lesson, outputs: Path) -> str:
     notebook = folder / f"{lesson.stem}.ipynb"
     tables = folder / "tables.md"
     files = made_files(folder)
-    pictures = [p for p in files if p.suffix.lower() == ".png"] or files
+    pngs = [p for p in files if p.suffix.lower() == ".png"]
+    pictures = [p for p in pngs if p.parent == folder] + [p for p in pngs if p.parent != folder]
     main = page if page.exists() else (pictures[0] if pictures else None)
     if pictures:
         thumb = f'<img src="{href(pictures[0], outputs)}" alt="{title}: {pictures[0].stem}">'
