@@ -69,6 +69,7 @@ class Toggle:
 
 
 Control = Slider | Choice | Toggle
+CONTROLS_KEY = "sandbox_controls"  # output metadata of a live explorer: the names of its controls
 
 
 def explore(draw: Callable[..., Any], path: str | os.PathLike, **controls: Control) -> Path:
@@ -180,7 +181,7 @@ def _display_live(draw, controls, defaults, png: bytes, path: Path) -> None:
     box, _, _ = build_view(draw, controls, defaults, png)
     bundle = box._repr_mimebundle_()
     bundle.update(image_bundle(png, ".png", path.name))
-    display(bundle, raw=True, metadata={FILE_KEY: path.name})
+    display(bundle, raw=True, metadata={FILE_KEY: path.name, CONTROLS_KEY: list(controls)})
 
 
 def _widget(key: str, control: Control, value: Any):

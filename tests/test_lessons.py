@@ -16,6 +16,7 @@ from sandbox.course.book import write_book
 from sandbox.course.catalogue import find_lessons
 from sandbox.course.links import book_problems
 from sandbox.course.runner import kernel_specs, run_notebook
+from sandbox.explorer import CONTROLS_KEY
 from sandbox.notebook import FILE_KEY
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -107,8 +108,8 @@ def test_explorer_cell_executes_with_its_defaults(course, stem):
     name = output.metadata[FILE_KEY]
     assert name.startswith("explore_") and (outputs / stem / name).exists()
     pytest.importorskip("ipywidgets")
-    # live controls for JupyterLab, with the default figure for viewers without a kernel
-    assert "application/vnd.jupyter.widget-view+json" in output.data
+    # the live controls were built (the saved notebook keeps the figure: the widget needs a kernel)
+    assert len(output.metadata[CONTROLS_KEY]) >= 2
 
 
 def test_course_book_links_and_images_resolve_offline(course):

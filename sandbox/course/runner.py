@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from sandbox.course.catalogue import Lesson
+from sandbox.course.page import WIDGET_VIEW
 
 NOTEBOOK_TOOLS = ("jupytext", "nbformat", "nbclient", "ipykernel", "nbconvert")
 INSTALL_HINT = "pip install 'physics-sandbox[notebook]'"
@@ -116,6 +117,8 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
     start = time.perf_counter()
     nb = jupytext.read(lesson.path)
     nb.metadata.pop("jupytext", None)
+    for i, cell in enumerate(nb.cells):  # the same notebook on every run (jupytext draws ids)
+        cell.id = f"cell-{i}"
     nb.metadata["kernelspec"] = {
         "name": "python3",
         "display_name": "Python 3",
@@ -145,6 +148,7 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
     finally:
         if manager.has_kernel:
             manager.shutdown_kernel(now=True)
+    settle(nb)
     notebook = folder / f"{lesson.stem}.ipynb"
     atomic_write_text(notebook, nbformat.writes(nb) + "\n")
     written = [notebook]
@@ -158,6 +162,25 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
     except Exception as err:  # the notebook is written; say why its page is not
         error = error or f"HTML page: {type(err).__name__}: {' '.join(str(err).split())[:300]}"
     return Outcome(lesson, time.perf_counter() - start, error, written)
+
+
+def settle(nb) -> None:
+    """Make an executed notebook the same on every run: a cell's printed output as one stream
+    (the kernel splits it where its messages happened to be cut), and an explorer shown by its
+    figure (its live widget cannot be shown once the kernel is gone; a rerun brings it back)."""
+    for cell in nb.cells:
+        merged: list = []
+        for output in cell.get("outputs", []):
+            last = merged[-1] if merged else None
+            if (output.output_type == "stream" and last is not None
+                    and last.output_type == "stream" and last.name == output.name):  # fmt: skip
+                last.text += output.text
+                continue
+            if output.get("data"):
+                output.data.pop(WIDGET_VIEW, None)
+            merged.append(output)
+        if "outputs" in cell:
+            cell.outputs = merged
 
 
 def _cell_error(err: Exception) -> str:
