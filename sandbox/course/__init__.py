@@ -7,4 +7,5 @@ gathered in a course book (``outputs/index.html``).
 - :mod:`sandbox.course.page`: an executed notebook as an HTML page that works offline
 - :mod:`sandbox.course.markup`: the little Markdown and TeX those pages and cards need
 - :mod:`sandbox.course.book`: the course book, one card per lesson
+- :mod:`sandbox.course.links`: checking that the book works offline (links resolve, nothing fetched)
 """
