@@ -9,5 +9,4 @@ BUNDLED = {"sandbox.lessons": "lessons", "sandbox.scenes": "scenes"}
 setup(
     packages=[*find_packages(include=["sandbox", "sandbox.*"]), *BUNDLED],
     package_dir=BUNDLED,
-    package_data={"sandbox.scenes": ["*.json"]},
 )

@@ -194,18 +194,37 @@ def _widget(key: str, control: Control, value: Any):
     if isinstance(control, Choice):
         options = list(control.pairs)
         if control.slider:
-            return w.SelectionSlider(options=options, value=value, description=label,
-                                     continuous_update=False, style=style)  # fmt: skip
+            return w.SelectionSlider(
+                options=options,
+                value=value,
+                description=label,
+                continuous_update=False,
+                style=style,
+            )
         kind = w.ToggleButtons if len(options) <= 4 else w.Dropdown
         return kind(options=options, value=value, description=label, style=style)
     numbers = (control.low, control.high, control.step, value)
     if all(isinstance(v, int) and not isinstance(v, bool) for v in numbers):
-        return w.IntSlider(value=value, min=control.low, max=control.high, step=control.step,
-                           description=label, continuous_update=False, style=style)  # fmt: skip
+        return w.IntSlider(
+            value=value,
+            min=control.low,
+            max=control.high,
+            step=control.step,
+            description=label,
+            continuous_update=False,
+            style=style,
+        )
     decimals = max(0, -int(f"{control.step:e}".split("e")[1]))
-    return w.FloatSlider(value=value, min=control.low, max=control.high, step=control.step,
-                         description=label, readout_format=f".{decimals}f",
-                         continuous_update=False, style=style)  # fmt: skip
+    return w.FloatSlider(
+        value=value,
+        min=control.low,
+        max=control.high,
+        step=control.step,
+        description=label,
+        readout_format=f".{decimals}f",
+        continuous_update=False,
+        style=style,
+    )
 
 
 def _show(value: Any) -> str:

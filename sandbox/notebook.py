@@ -50,6 +50,6 @@ def show_file(path: str | os.PathLike, folder: Path | None = None) -> bool:
             name = path.resolve().relative_to(folder.resolve()).as_posix()
         except ValueError:
             pass
-    display(image_bundle(path.read_bytes(), path.suffix, name), raw=True,
-            metadata={FILE_KEY: name})  # fmt: skip
+    bundle = image_bundle(path.read_bytes(), path.suffix, name)
+    display(bundle, raw=True, metadata={FILE_KEY: name})
     return True

@@ -56,6 +56,11 @@ def test_a_file_in_the_working_folder_wins_over_the_bundled_scene(tmp_path, monk
     assert "bundled" not in capsys.readouterr().out
 
 
+def test_scenes_help_has_examples(capsys):
+    assert main(["scenes", "--help"]) == 0
+    assert "examples:\n  sandbox scenes" in capsys.readouterr().out
+
+
 def test_scenes_lists_every_bundled_scene_with_one_line(capsys):
     assert main(["scenes"]) == 0
     lines = capsys.readouterr().out.splitlines()

@@ -19,7 +19,7 @@ import pytest
 from sandbox.course.links import book_problems
 
 ROOT = Path(__file__).resolve().parent.parent
-SOURCES = ("pyproject.toml", "setup.py", "README.md", "sandbox", "lessons", "scenes")
+SOURCES = ("pyproject.toml", "setup.py", "README.md", "LICENSE", "sandbox", "lessons", "scenes")
 
 
 def run(args, **kw) -> subprocess.CompletedProcess:

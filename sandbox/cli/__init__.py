@@ -1,4 +1,5 @@
-"""The command line: ``sandbox simulate | compare | lessons | scenes`` (also ``python -m sandbox``).
+"""The command line: ``sandbox simulate | compare | lessons | scenes | schema`` (also
+``python -m sandbox``).
 
 One module per command (``sandbox/cli/<command>.py``, each with ``add_parser`` and ``run``);
 this one assembles the parser and turns every failure into one ``error:`` line.
@@ -13,18 +14,36 @@ import argparse
 import os
 import sys
 
-from sandbox.cli import compare, lessons, scenes, simulate
+from sandbox.cli import compare, lessons, scenes, schema, simulate
 from sandbox.cli.common import CliError, Parser
 
-COMMANDS = (simulate, compare, lessons, scenes)
+COMMANDS = (simulate, compare, lessons, scenes, schema)
+
+EXAMPLES = """examples:
+  sandbox simulate scenes/drop.json --steps 240 --gif drop.gif
+  sandbox compare scenes/stack.json --vary warm_start=false --out stack/
+  sandbox lessons 01 07
+  sandbox scenes --copy my_scenes/
+  sandbox schema > scene.schema.json
+
+sandbox COMMAND --help shows each command's options and examples."""
 
 __all__ = ["CliError", "build_parser", "main"]
 
 
 def build_parser() -> argparse.ArgumentParser:
     """The ``sandbox`` parser with every command."""
-    parser = Parser(prog="sandbox", description="A 2D physics sandbox for teaching.")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    from sandbox import __version__
+
+    parser = Parser(
+        prog="sandbox",
+        description="A 2D physics sandbox for teaching.",
+        epilog=EXAMPLES,
+    )
+    parser.add_argument("--version", action="version", version=f"sandbox {__version__}")
+    sub = parser.add_subparsers(
+        dest="command", required=True, parser_class=Parser, metavar="COMMAND"
+    )
     for command in COMMANDS:
         command.add_parser(sub)
     return parser
@@ -36,7 +55,10 @@ def main(argv: list[str] | None = None) -> int:
 
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as done:  # --help and --version print, then stop here
+            return int(done.code or 0)
         return args.func(args)
     except (CliError, SceneError) as err:
         path = err.path or "scene"  # a problem with the whole document

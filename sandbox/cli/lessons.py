@@ -11,20 +11,38 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from sandbox.cli.common import CliError, positive_int
+from sandbox.cli.common import CliError, field_type
+from sandbox.fieldspec import Field
+
+JOBS = Field("jobs", "integer", "lessons run at a time", None, "", lo=1, hi=64)
 
 
 def add_parser(sub) -> None:
     """The ``lessons`` command and its options."""
-    les = sub.add_parser("lessons", help="run lessons into ./outputs (notebooks, pages, figures)")
+    les = sub.add_parser(
+        "lessons",
+        help="run lessons into ./outputs (notebooks, pages, figures)",
+        description="Run lessons (all, or those named) into ./outputs (inside a checkout, its\n"
+        "outputs/): figures, animations, tables.md, the executed notebook and its HTML page per\n"
+        "lesson, and the course book outputs/index.html.",
+        epilog="examples:\n  sandbox lessons\n  sandbox lessons 01 07\n  sandbox lessons friction"
+        "\n  sandbox lessons 10 --out course/",
+    )
     les.add_argument(
         "names", nargs="*", metavar="NAME", help="a number (10), a file stem or part of a name"
     )
     les.add_argument("--out", metavar="DIR", help="write here instead of ./outputs")
-    les.add_argument("--jobs", type=positive_int, default=None,
-                     help="lessons run at a time (default: 2, or 1 on a single core)")  # fmt: skip
-    les.add_argument("--scripts", action="store_true",
-                     help="run as plain scripts: figures and tables only, no notebooks or pages")  # fmt: skip
+    les.add_argument(
+        "--jobs",
+        type=field_type(JOBS, "--jobs"),
+        default=None,
+        help="lessons run at a time (default: 2, or 1 on a single core)",
+    )
+    les.add_argument(
+        "--scripts",
+        action="store_true",
+        help="run as plain scripts: figures and tables only, no notebooks or pages",
+    )
     les.set_defaults(func=run)
 
 
@@ -73,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"writing {len(chosen)} lessons to {outputs} as {kind}, {jobs} at a time", flush=True)
     if missing:
         print(f"note: notebooks and HTML pages need {INSTALL_HINT} (missing: {', '.join(missing)})")
-    outcomes = _run_all(chosen, outputs, notebooks, max(1, jobs))
+    outcomes = _run_all(chosen, outputs, notebooks, jobs)
     note = "" if notebooks or args.scripts else f"Notebooks and pages need {INSTALL_HINT}."
     book = write_book(lessons, outputs, note)
     failed = [o.lesson.stem for o in outcomes if not o.ok]

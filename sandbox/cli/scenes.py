@@ -11,7 +11,15 @@ from sandbox.cli.common import CliError
 
 def add_parser(sub) -> None:
     """The ``scenes`` command and its options."""
-    sc = sub.add_parser("scenes", help="list the bundled example scenes, or copy them out")
+    sc = sub.add_parser(
+        "scenes",
+        help="list the bundled example scenes, or copy them out",
+        description="List the example scenes that come with the package, one line each. Any\n"
+        "command that takes a SCENE.json also takes one of these names when no such file\n"
+        "exists in the working folder.",
+        epilog="examples:\n  sandbox scenes\n  sandbox scenes --copy my_scenes/\n"
+        "  sandbox simulate drop --gif drop.gif",
+    )
     sc.add_argument("--copy", metavar="DIR", help="copy every bundled scene into DIR (created)")
     sc.set_defaults(func=run)
 

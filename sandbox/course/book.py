@@ -87,8 +87,8 @@ def card(lesson: Lesson, outputs: Path) -> str:
     if links:
         parts.append(f'<p class="links">{"".join(links)}</p>')
     if not files and not links:
-        parts.append(f'<p class="missing">not made yet: <code>sandbox lessons {lesson.number:02d}'
-                     "</code></p>")  # fmt: skip
+        command = f"sandbox lessons {lesson.number:02d}"
+        parts.append(f'<p class="missing">not made yet: <code>{command}</code></p>')
     if files:
         items = "".join(
             f'<li><a href="{href(p, outputs)}">{html.escape(p.relative_to(folder).as_posix())}</a>'

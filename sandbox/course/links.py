@@ -9,8 +9,9 @@ from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
 # (tag, attribute) pairs whose target a browser loads by itself, rather than on a click
-LOADED = {("img", "src"), ("script", "src"), ("link", "href"), ("iframe", "src"),
-          ("source", "src"), ("video", "src"), ("audio", "src"), ("embed", "src")}  # fmt: skip
+LOADED = {("link", "href")} | {
+    (tag, "src") for tag in ("img", "script", "iframe", "source", "video", "audio", "embed")
+}
 CSS_URL = re.compile(r"""url\(\s*['"]?([^'")\s]+)|@import\s+['"]([^'"]+)""")
 
 

@@ -172,8 +172,8 @@ def settle(nb) -> None:
         merged: list = []
         for output in cell.get("outputs", []):
             last = merged[-1] if merged else None
-            if (output.output_type == "stream" and last is not None
-                    and last.output_type == "stream" and last.name == output.name):  # fmt: skip
+            same = last is not None and last.output_type == "stream"
+            if same and output.output_type == "stream" and last.name == output.name:
                 last.text += output.text
                 continue
             if output.get("data"):
