@@ -106,24 +106,31 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
-    """Run the lessons, ``jobs`` at a time; one line per lesson, in course order."""
-    from sandbox.course.runner import kernel_specs, run_notebook, run_script
+    """Run the lessons, ``jobs`` at a time; one line per lesson, in course order.
+
+    The first lesson runs alone: on a fresh install it compiles the engine's kernels into
+    numba's cache, which the lessons after it load instead of each compiling them again at the
+    same time. Each lesson writes only its own folder, so the outputs do not depend on ``jobs``.
+    """
+    from sandbox.course.runner import Outcome, kernel_specs, run_notebook, run_script
 
     with tempfile.TemporaryDirectory(prefix="sandbox-kernel-") as tmp:
-        if notebooks:
-            specs = kernel_specs(Path(tmp))
+        specs = kernel_specs(Path(tmp)) if notebooks else None
 
-            def one(lesson):
-                return run_notebook(lesson, outputs, specs)
-        else:
-
-            def one(lesson):
+        def one(lesson) -> Outcome:
+            try:
+                if specs is not None:
+                    return run_notebook(lesson, outputs, specs)
                 return run_script(lesson, outputs)
+            except Exception as err:  # the runner's own failure: one line, the others go on
+                return Outcome(lesson, 0.0, f"{type(err).__name__}: {err}")
 
-        outcomes = []
+        def report(outcome: Outcome) -> Outcome:
+            status = "ok" if outcome.ok else f"FAILED: {outcome.error}"
+            print(f"== {outcome.lesson.stem}: {status} in {outcome.seconds:.1f} s", flush=True)
+            return outcome
+
+        outcomes = [report(one(chosen[0]))]
         with ThreadPoolExecutor(max_workers=jobs) as pool:
-            for outcome in pool.map(one, chosen):  # each lesson writes only its own folder
-                status = "ok" if outcome.ok else f"FAILED: {outcome.error}"
-                print(f"== {outcome.lesson.stem}: {status} in {outcome.seconds:.1f} s", flush=True)
-                outcomes.append(outcome)
+            outcomes += [report(outcome) for outcome in pool.map(one, chosen[1:])]
     return outcomes
