@@ -16,6 +16,7 @@ from sandbox.controllers import LanderController, Scripted, Thruster, chain, lan
 from sandbox.errors import SimulationError
 from sandbox.forces import Buoyancy, ConstantForce, Drag, ForceGenerator
 from sandbox.joints import Joint, PinJoint, PivotJoint, SpringJoint
+from sandbox.overlays import Layers
 from sandbox.recording import Recording, record
 from sandbox.scene import dump_scene, load_scene, read_scene_file, save_scene, validate_scene
 from sandbox.scene_fields import SceneError
@@ -50,6 +51,7 @@ __all__ = [
     "ForceGenerator",
     "Joint",
     "LanderController",
+    "Layers",
     "PinJoint",
     "PivotJoint",
     "Polygon",
