@@ -1,15 +1,17 @@
-# Two entry points: `make lessons` renders every lesson into outputs/, `make test` runs the suite.
-# Each creates .venv and installs the project into it when needed (only python3 is required).
+# Entry points: `make lessons` renders every lesson into outputs/ (executed notebooks, HTML pages,
+# figures, tables, the course book outputs/index.html), `make test` runs the suite, `make notebook`
+# opens the lessons as notebooks in JupyterLab. Each creates .venv and installs the project into
+# it when needed (only python3 is required).
 PY ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 DEV_STAMP := $(VENV)/.installed-dev
 
-.PHONY: lessons test test-bounds lint format docs bench clean
+.PHONY: lessons notebook test test-bounds lint format docs bench clean
 
-# the project with what the tests need (the `test` extra)
-$(STAMP): pyproject.toml
+# the project with what the tests and `make lessons` need (the `test` extra)
+$(STAMP): pyproject.toml setup.py
 	$(PY) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q -e '.[test]'
@@ -22,6 +24,15 @@ $(DEV_STAMP): $(STAMP)
 
 lessons: $(STAMP)
 	$(BIN)/sandbox lessons
+
+# JupyterLab on the executed notebooks (made first if missing); the explorer cells have sliders
+notebook: $(VENV)/.installed-notebook
+	test -f outputs/index.html || $(BIN)/sandbox lessons
+	$(BIN)/jupyter lab outputs
+
+$(VENV)/.installed-notebook: $(STAMP)
+	$(BIN)/python -m pip install -q -e '.[test,notebook]'
+	touch $(VENV)/.installed-notebook
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
@@ -47,4 +58,4 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py
 
 clean:
-	rm -rf $(VENV) outputs/*/ .pytest_cache site
+	rm -rf $(VENV) outputs/*/ outputs/index.html .pytest_cache site build

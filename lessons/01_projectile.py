@@ -38,7 +38,7 @@ import pymunk
 from sandbox import integrators, projectile
 from sandbox.body import Body
 from sandbox.geometry import box_vertices
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import CircleOutline, Recording
 from sandbox.render import render_gif
 from sandbox.shapes import Circle
@@ -547,7 +547,48 @@ gif = render_gif(
     panel="y (m)",
     trail=True,
 )
+show_gif(gif)
 print(f"wrote {len(frame_times)} frames to {gif.name}")
+
+# %% [markdown]
+# ## Explore: integrator and time step
+#
+# Fly the ball again with another integrator or time step and see where it lands. In JupyterLab
+# the controls rerun the flight and redraw; a script draws the slides' case once.
+
+# %%
+from sandbox.explorer import Choice, explore
+
+
+def flight(integrator: str = "explicit_euler", dt: float = DT):
+    """The ball flown with ``integrator`` and step ``dt`` until it is back at launch height."""
+    world, ball = ball_world(integrator, dt)
+    t, p = [0.0], [np.array(ball.position)]
+    while (world.steps == 0 or p[-1][1] > 1e-9) and world.time < 20.0:
+        world.step()
+        t.append(world.time)
+        p.append(np.array(ball.position))
+    t, p = np.array(t), np.array(p)
+    (x0, y0), (x1, y1) = p[-2], p[-1]
+    land = x1 if y1 == 0.0 else x0 + (x1 - x0) * y0 / (y0 - y1)  # where the path crosses y = 0
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4))
+    fine = np.linspace(0.0, 8.0, 161)
+    ax.plot(*projectile.position(S, U, A, fine).T, color="k", lw=1, label="analytic")
+    ax.plot(*p.T, "o-", ms=3, color=COLOR[integrator], label=f"{LABEL[integrator]}, dt = {dt:g} s")
+    ax.set(xlabel="x (m)", ylabel="y (m)", title=f"lands at x = {land:.2f} m (analytic: 24 m)")
+    ax.legend(fontsize=8)
+    error = np.linalg.norm(p - projectile.position(S, U, A, t), axis=1)
+    bx.plot(t, error, "o-", ms=3, color=COLOR[integrator])
+    bx.set(xlabel="t (s)", ylabel="|p - p analytic| (m)", title="position error")
+    for axis in (ax, bx):
+        axis.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+explore(flight, OUT / "explore_flight.png",
+        integrator=Choice({LABEL[m]: m for m in (*METHODS, "analytic")}, "integrator"),
+        dt=Choice({f"{v:g} s": v for v in (1.0, 0.5, 0.25, 0.1, 0.05)}, "dt", slider=True))  # fmt: skip
 
 # %% [markdown]
 # ## Exercises

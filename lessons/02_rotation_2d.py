@@ -40,7 +40,7 @@ import numpy as np
 
 from sandbox import orientation
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 from sandbox.shapes import Box
@@ -727,6 +727,7 @@ gif = render_gif(
     colors=[COLOR[n] for n in NAMES],
     panel=[STORED, DRIFT],
 )
+show_gif(gif)
 print(f"wrote {len(recs[0])} frames to {gif.name}")
 
 # %% [markdown]

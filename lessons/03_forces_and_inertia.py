@@ -34,7 +34,7 @@ from matplotlib.patches import Polygon as PolygonPatch
 
 from sandbox.body import Body
 from sandbox.geometry import box_vertices
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.mass import (
     box_mass_properties,
     center_of_mass,
@@ -367,4 +367,5 @@ gif = render_gif(
     stride=GIF_EVERY,
     draw="forces",
 )
+show_gif(gif)
 print(f"wrote {len(world_rec)} frames to {gif.name}")

@@ -47,7 +47,7 @@ from matplotlib.patches import Circle as CirclePatch
 from matplotlib.patches import Polygon as PolygonPatch
 
 from sandbox import Body, Box, Circle, Polygon, World
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -301,6 +301,7 @@ print(
 )
 gif = render_gif(rec_d, OUT / "manifold_over_time.gif", fps=30, size_px=360,
                  draw="contacts,normals", view=(-1.2, 1.2, -0.3, 1.5))  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(rec_d)} frames to {gif.name}")
 
 # %% [markdown]

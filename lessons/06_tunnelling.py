@@ -45,7 +45,7 @@ from matplotlib.patches import Rectangle
 import sandbox
 from sandbox import Body, Box, Circle, World
 from sandbox.geometry import box_vertices
-from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path, show_gif
 from sandbox.recording import Recording
 from sandbox.render import record, render_gif
 from sandbox.toi import distance, time_of_impact
@@ -472,6 +472,7 @@ gif = render_gif(
     view=(3.0, 7.8, -1.2, 1.2),
     axes=True,
 )
+show_gif(gif)
 print(f"wrote {len(GHOST)} frames to {gif.name}: steps 1 to 4, {SUBFRAMES} frames per step")
 
 # %% [markdown]

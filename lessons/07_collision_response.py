@@ -41,7 +41,7 @@ import numpy as np
 
 import sandbox
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 from sandbox.shapes import Box, Circle
@@ -180,6 +180,7 @@ for k, e in enumerate(RESTITUTIONS):
     labels.append(f"e = {e}")
 gif = render_gif(runs, OUT / "bounce.gif", fps=20, size_px=420, labels=labels,
                  view=(-0.6, 5.4, -0.4, DROP_HEIGHT + 0.6))  # room for the legend, right  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
 # %% [markdown]
@@ -203,6 +204,7 @@ print(
 )
 gif = render_gif(bars, OUT / "bounce_energy.gif", fps=20, size_px=360, panel="energy-bars",
                  draw="contacts,impulses", view=(-0.6, 1.0, -0.4, DROP_HEIGHT + 0.6))  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(bars)} frames to {gif.name}")
 
 # %% [markdown]
@@ -744,7 +746,46 @@ for solver in ("pairwise", "iterative"):
 gif = render_gif(runs, OUT / "newtons_cradle.gif", fps=20, size_px=360,
                  labels=["pairwise (in turn)", "iterative (together)"], panel="energy-bars",
                  draw="contacts,impulses")  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(runs[0])} frames to {gif.name}")
+
+# %% [markdown]
+# ## Explore: restitution, time step and solver
+#
+# Drop the ball again: each apex should be $e^2$ times the one before (dotted). In JupyterLab
+# the controls rerun the drop and redraw; a script draws it once.
+
+# %%
+from sandbox.explorer import Choice, Slider, explore
+
+
+def bounces(restitution: float = 0.6, dt: float = DT, solver: str = "iterative"):
+    """A ball with restitution e dropped DROP_HEIGHT onto a ground with e = 1, for 4 s."""
+    world, ball = drop_world(restitution, dt)
+    world.settings.solver = solver
+    t, y = [0.0], [DROP_HEIGHT]
+    while world.time < 4.0:
+        world.step()
+        t.append(world.time)
+        y.append(ball.position[1] - BALL_RADIUS)
+    fig, ax = plt.subplots(figsize=(9, 3.8))
+    ax.plot(t, y, color="C0", label=f"e = {restitution:g}, dt = 1/{round(1 / dt)} s, {solver}")
+    for k in range(1, 6):
+        ax.axhline(restitution ** (2 * k) * DROP_HEIGHT, color="C1", ls=":", lw=1,
+                   label="e$^{2k}$ h, k = 1, 2, ..." if k == 1 else None)  # fmt: skip
+    ax.set(xlabel="t (s)", ylabel="height of the ball's bottom (m)",
+           title=f"bouncing ball: first apex e$^2$ h = {restitution**2 * DROP_HEIGHT:.3f} m")  # fmt: skip
+    ax.legend(fontsize=8, loc="upper right")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+explore(bounces, OUT / "explore_bounces.png",
+        restitution=Slider(0.0, 1.0, 0.05, "restitution e"),
+        dt=Choice({f"1/{round(1 / v)} s": v for v in (1 / 30, DT, 1 / 120, 1 / 240)}, "dt",
+                  slider=True),
+        solver=Choice(("pairwise", "shock", "iterative"), "solver"))  # fmt: skip
 
 # %% [markdown]
 # ## Exercises

@@ -41,7 +41,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import OutlineArrays, place, record
 from sandbox.render import render_gif
 from sandbox.shapes import Box
@@ -257,6 +257,7 @@ gif = render_gif(
     colors=[COLORS[o] for o in OPTIONS], panel="energy-bars", view=(-1.2, 2.2, -0.6, 1.6),
     draw="contacts,normals",
 )  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
 # %% [markdown]

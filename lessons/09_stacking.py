@@ -46,7 +46,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import sandbox
-from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path, show_gif
 from sandbox.recording import Recording
 from sandbox.render import render_gif
 
@@ -152,6 +152,7 @@ for scene in SCENES:
         lanes, OUT / f"{scene}.gif", fps=15, size_px=400, labels=list(LANE_ORDER),
         colors=[COLORS[s] for s in LANE_ORDER], view=(-0.5, left, -0.6, top + 0.5),
     )  # fmt: skip
+    show_gif(gif)
     print(f"wrote {len(lanes[0])} frames to {gif.name}")
 
 # %% [markdown]
@@ -254,6 +255,44 @@ save_figure(fig, OUT / "iterations_and_switches.png", dpi=100)
 # - **position correction** hardly matters here: the iterative solver keeps the overlaps below
 #   the 5 mm slop, where the penetration fix does nothing. It matters when something pushes
 #   bodies deep into each other (lesson 08).
+
+# %% [markdown]
+# ## Explore: solver, iterations and warm starting
+#
+# Run a scene again with other settings: the picture shows it after 5 s, the plots how far the
+# top box sank and how deep the worst overlap got. In JupyterLab the controls rerun and redraw;
+# a script draws the defaults once.
+
+# %%
+from sandbox.explorer import Choice, Slider, Toggle, explore
+from sandbox.frames import FrameRenderer
+
+
+def stacking(scene: str = "stack", solver: str = "iterative", iterations: int = 10,
+             warm_start: bool = True):  # fmt: skip
+    """One run of DURATION s; the last frame beside the top drop and the deepest overlap."""
+    r = run(scene, frames=True, solver=solver, iterations=iterations, warm_start=warm_start)
+    with FrameRenderer(r["rec"], size_px=360, axes=True) as frames:
+        picture = frames.frame(len(r["rec"]) - 1)
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.2), gridspec_kw={"width_ratios": [1, 1.4]})
+    ax.imshow(picture)
+    ax.set_axis_off()
+    ax.set_title(f"{scene} after {DURATION:g} s: {solver}, {iterations} iterations, "
+                 f"warm start {'on' if warm_start else 'off'}", fontsize=9)  # fmt: skip
+    bx.plot(r["t"], np.maximum(-r["err"], 1e-6), color="C0", label="top box drop (m)")
+    bx.plot(r["t"], np.maximum(r["pen"], 1e-6), color="C3", label="deepest overlap (m)")
+    bx.axhline(STANDS, color="k", ls="--", lw=1, label=f"stands: drop < {STANDS} m")
+    bx.set(yscale="log", ylim=(1e-6, 20), xlabel="t (s)", ylabel="length (m), 1e-6 at least",
+           title=f"top drop after {DURATION:g} s: {r['drop']:.2e} m")  # fmt: skip
+    bx.legend(fontsize=8, loc="lower right")
+    bx.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+explore(stacking, OUT / "explore_stacking.png",
+        scene=Choice(SCENES, "scene"), solver=Choice(SOLVERS, "solver"),
+        iterations=Slider(1, 32, 1, "iterations"), warm_start=Toggle("warm start"))  # fmt: skip
 
 # %% [markdown]
 # ## Exercises

@@ -39,7 +39,7 @@ import numpy as np
 
 import sandbox
 from sandbox.body import Body
-from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path, show_gif
 from sandbox.overlays import Layers
 from sandbox.recording import record
 from sandbox.render import render_gif
@@ -205,6 +205,7 @@ layers = Layers("contacts,impulses", impulse=15.0)  # m of arrow per N s: each c
 # carries about 0.07 N s per step, drawn about 1 m long
 gif = render_gif(runs, OUT / "incline.gif", fps=20, size_px=360, draw=layers,
                  labels=[f"mu = {mu}" for mu in MUS], panel="v down the slope (m/s)")  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
 # %% [markdown]
@@ -394,6 +395,40 @@ save_figure(fig, OUT / "static_kinetic.png", dpi=100)
 # left. An engine could offer it per contact (the friction clamp $\mu_s$ while a contact point's
 # tangential speed is below a small threshold, $\mu_k$ above); the one-coefficient solvers keep
 # one clamp so that resting and sliding contacts are solved alike and a stack does not creep.
+
+# %% [markdown]
+# ## Explore: friction and slope
+#
+# Put a box of friction $\mu$ on a ramp of another angle: it stays when $\tan\theta \le \mu$,
+# else it slides with $a = g(\sin\theta - \mu\cos\theta)$ (dotted). In JupyterLab the controls
+# rerun the slide and redraw; a script draws the defaults once.
+
+# %%
+from sandbox.explorer import Slider, explore
+
+
+def friction(mu: float = 0.4, angle: float = 30.0):
+    """The box on the ramp for SLIDE_TIME s: distance and velocity down the slope."""
+    r = slide(angle, mu)
+    a = theory_accel(angle, mu)
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4))
+    ax.plot(r["t"], r["s"], color="C0", label="engine")
+    ax.plot(r["t"], 0.5 * a * r["t"] ** 2, "k:", label="g(sin - mu cos) t$^2$ / 2")
+    ax.set(xlabel="t (s)", ylabel="distance down the slope (m)",
+           title=f"mu = {mu:g}, slope {angle:g} deg: {'slides' if a > 0 else 'stays'}")  # fmt: skip
+    bx.plot(r["t"], r["v"], color="C0", label=f"engine: a = {r['a']:.3f} m/s$^2$")
+    bx.plot(r["t"], a * r["t"], "k:", label=f"theory: a = {a:.3f} m/s$^2$")
+    bx.set(xlabel="t (s)", ylabel="velocity down the slope (m/s)",
+           title=f"critical angle arctan mu = {math.degrees(math.atan(mu)):.1f} deg")  # fmt: skip
+    for axis in (ax, bx):
+        axis.legend(fontsize=8)
+        axis.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+explore(friction, OUT / "explore_friction.png",
+        mu=Slider(0.0, 1.0, 0.05, "friction mu"), angle=Slider(5.0, 60.0, 1.0, "slope (deg)"))  # fmt: skip
 
 # %% [markdown]
 # ## Exercises

@@ -34,7 +34,7 @@ import numpy as np
 
 from sandbox import Body, Box, Circle, World
 from sandbox.joints import PinJoint, PivotJoint
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -405,6 +405,7 @@ print(
 )
 gif = render_gif(rec, OUT / "joints.gif", fps=30, size_px=360, panel="energy-bars", trail=40,
                  draw="joints")  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(rec)} frames to {gif.name}")
 
 # %% [markdown]

@@ -35,7 +35,7 @@ from sandbox import Body, Box, Circle, World
 from sandbox.buoyancy import box_draft, disc_draft
 from sandbox.forces import Buoyancy
 from sandbox.joints import SpringJoint
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.pymunk_bridge import PymunkScene
 from sandbox.recording import record
 from sandbox.render import render_gif
@@ -169,6 +169,7 @@ print(
 )
 gif = render_gif(bar_runs, OUT / "spring_energy_bars.gif", fps=30, size_px=360,
                  labels=["explicit Euler", "semi-implicit Euler"], panel="energy-bars")  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(bar_runs[0])} frames to {gif.name}")
 
 # %% [markdown]
@@ -262,6 +263,7 @@ save_figure(fig, OUT / "sinking.png", dpi=100)
 # the view is the tank, wall to wall: the water (drawn across the whole view) stays inside it
 gif = render_gif(rec, OUT / "floating.gif", fps=30, size_px=360, panel=HEIGHT,
                  view=(-2.15, 19.15, -18.8, 2.5))  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(rec)} frames to {gif.name}")
 
 # %% [markdown]

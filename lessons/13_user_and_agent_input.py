@@ -37,7 +37,7 @@ import numpy as np
 from sandbox import Body, Box, Circle, World
 from sandbox.controllers import LanderController, Scripted, lander_thrusters
 from sandbox.forces import ConstantForce
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -227,6 +227,7 @@ gif = render_gif(
     trail=True,
     draw="forces",
 )
+show_gif(gif)
 print(f"wrote {len(windy_rec)} frames to {gif.name}")
 
 # %% [markdown]

@@ -42,7 +42,7 @@ import numpy as np
 
 import sandbox
 from sandbox.compare import compare
-from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path, show_gif, show_image
 from sandbox.pymunk_bridge import PymunkScene
 from sandbox.recording import record
 from sandbox.render import render_gif
@@ -72,8 +72,8 @@ def load(name: str) -> dict:
 
 
 def run(name: str, variants=None):
-    """Compare one scene; outputs go to OUT/<name>/."""
-    return compare(
+    """Compare one scene; outputs go to OUT/<name>/ (figures shown inline in a notebook)."""
+    result = compare(
         load(name),
         STEPS[name],
         OUT / name,
@@ -83,6 +83,9 @@ def run(name: str, variants=None):
         view=VIEWS[name],
         quiet=True,
     )
+    for path in result.files.values():
+        show_image(path)
+    return result
 
 
 def upward_crossings(t: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -193,6 +196,7 @@ print(f"kinetic energy just before the bounce {drop_bars.series['energy.kinetic_
       f"(1 - e^2 = 75%)")  # fmt: skip
 gif = render_gif(drop_bars, OUT / "drop_energy_bars.gif", fps=20, size_px=GIF_PX, stride=2,
                  panel="energy-bars", draw="contacts,impulses", view=VIEWS["drop"])  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(drop_bars) // 2 + 1} frames to {gif.name}")
 
 # %% [markdown]

@@ -35,7 +35,7 @@ from PIL import Image
 from sandbox import inertia3d as inr
 from sandbox import rigid3d as rb
 from sandbox import rotation3d as r3
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 
 # knobs
 CUBOID = (1.0, 0.3, 0.2, 0.1)  # mass (kg), w, h, d (m): three different moments
@@ -501,6 +501,7 @@ sample = Image.fromarray(np.vstack(images[:: max(1, len(images) // 8)]))
 palette = sample.quantize(colors=96, method=Image.Quantize.FASTOCTREE)
 gif = [Image.fromarray(a).quantize(palette=palette, dither=Image.Dither.NONE) for a in images]
 gif[0].save(OUT / "tennis_racket.gif", save_all=True, append_images=gif[1:], duration=60, loop=0)
+show_gif(OUT / "tennis_racket.gif")
 print(f"GIF: {len(gif)} frames, {gif[0].size[0]} x {gif[0].size[1]} px")
 
 # %% [markdown]

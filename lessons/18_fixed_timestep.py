@@ -41,7 +41,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from sandbox import Body, Box, Circle, World
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import Recording
 from sandbox.render import render_gif
 
@@ -249,6 +249,7 @@ lanes.append(truth)
 gif = render_gif(lanes, OUT / "interpolation.gif", fps=DISPLAY_HZ, size_px=360,
                  labels=["newest state", "interpolated", "exact, x = v t"],
                  view=(-0.4, SPEED * SECONDS + 0.4, -1.6, 1.6), colors=["C3", "C0", "0.5"])  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(lanes[0])} frames to {gif.name}")
 
 # %% [markdown]

@@ -33,7 +33,7 @@ import numpy as np
 
 from sandbox import Body, Box, Circle, World
 from sandbox.joints import SpringJoint
-from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
 from sandbox.render import render_gif
 
@@ -289,6 +289,7 @@ save_figure(fig, OUT / "soft_bodies.png", dpi=100)
 
 gif = render_gif(runs, OUT / "soft_box.gif", fps=30, size_px=360, labels=list(curves),
                  panel=AREA, view=(-1.2, 6.6, -0.6, 2.6))  # fmt: skip
+show_gif(gif)
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
 # %% [markdown]

@@ -90,11 +90,16 @@ def _refuse_constants(value: Any, path: str) -> None:
 
 # --- loading and saving --------------------------------------------------------------------------
 def load_scene(source: str | os.PathLike | dict) -> World:
-    """Build a ``World`` from a scene file path or an already-parsed scene dict."""
+    """Build a ``World`` from a scene file path or an already-parsed scene dict.
+
+    A name with no such file in the working folder (``"drop"``) loads the bundled example scene.
+    """
     if isinstance(source, dict):
         spec = validate_scene(source)
     elif isinstance(source, str | os.PathLike):
-        spec = validate_scene(read_scene_file(source))
+        from sandbox.bundled import resolve_scene
+
+        spec = validate_scene(read_scene_file(resolve_scene(source)[0]))
     else:
         raise TypeError(f"load_scene: expected a path or a dict, got {type(source).__name__}")
     from sandbox.build import build_world

@@ -1,69 +1,135 @@
-"""Every lesson runs as a notebook (jupytext -> ipynb, executed with a real kernel) and writes
-its figures. Two lessons run at a time (one kernel each).
+"""Every lesson runs as a notebook, the way `sandbox lessons` runs it (jupytext -> ipynb, a fresh
+kernel, the HTML page), once for the whole module, two at a time. Then: each writes figures,
+shows every figure and animation inline in the cell that made it, shows each table once (and
+saves it to tables.md), its explorer cell executes, and the course book's links all resolve.
 
 The kernels run with SANDBOX_CHECK_FIGURES set, so every figure a lesson saves through
 ``sandbox.lessonkit.save_figure`` is checked against the figure standard
 (``sandbox.figure_standard``: title, labelled axes with units, legends, no legend over data)
 and a figure that breaks it fails its lesson here, with the list of problems."""
 
+import base64
 import os
+import re
+import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-import jupytext
-import nbclient
+import nbformat
 import pytest
 
 from sandbox import figure_standard
+from sandbox.course.book import write_book
+from sandbox.course.catalogue import find_lessons
+from sandbox.course.links import book_problems
+from sandbox.course.runner import kernel_specs, run_notebook
+from sandbox.explorer import CONTROLS_KEY
+from sandbox.notebook import FILE_KEY
 
 ROOT = Path(__file__).resolve().parent.parent
-LESSONS = sorted((ROOT / "lessons").glob("[0-9][0-9]_*.py"))
-
-
-def execute(lesson: Path, outputs: Path) -> str | None:
-    """Run one lesson as a notebook; returns an error text or None."""
-    nb = jupytext.read(lesson)
-    nb.metadata["kernelspec"] = {
-        "name": "python3",
-        "display_name": "Python 3",
-        "language": "python",
-    }
-    client = nbclient.NotebookClient(
-        nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(ROOT)}}
-    )
-    try:
-        client.execute()
-    except Exception as err:  # report the failing cell, not the thread's traceback
-        return f"{lesson.name}: {type(err).__name__}: {str(err)[-2000:]}"
-    return None
+LESSONS = find_lessons(ROOT / "lessons")
+IDS = [lesson.stem for lesson in LESSONS]
+EXPLORERS = ("01_projectile", "07_collision_response", "09_stacking", "10_friction")
+SEPARATOR = re.compile(r"^-+(  -+)*$", re.M)  # the dashed line under a printed table's header
+IMAGES = ("image/png", "image/gif")
 
 
 @pytest.fixture(scope="module")
-def executed(tmp_path_factory):
+def course(tmp_path_factory):
     outputs = tmp_path_factory.mktemp("outputs")
-    os.environ["SANDBOX_OUTPUTS"] = str(outputs)
-    os.environ["MPLBACKEND"] = "Agg"
     os.environ[figure_standard.ENV] = "1"  # save_figure raises on a figure that breaks it
     try:
-        with ThreadPoolExecutor(max_workers=2) as pool:
-            errors = dict(
-                zip(LESSONS, pool.map(lambda f: execute(f, outputs), LESSONS), strict=True)
-            )
+        with tempfile.TemporaryDirectory() as tmp:
+            specs = kernel_specs(Path(tmp))
+            with ThreadPoolExecutor(max_workers=2) as pool:
+                outcomes = list(pool.map(lambda x: run_notebook(x, outputs, specs), LESSONS))
     finally:
-        os.environ.pop("SANDBOX_OUTPUTS", None)
         os.environ.pop(figure_standard.ENV, None)
-    return outputs, errors
+    write_book(LESSONS, outputs)
+    return outputs, {o.lesson.stem: o for o in outcomes}
+
+
+def notebook(outputs: Path, stem: str):
+    return nbformat.read(outputs / stem / f"{stem}.ipynb", as_version=4)
+
+
+def code_outputs(nb):
+    for cell in nb.cells:
+        if cell.cell_type == "code":
+            for output in cell.outputs:
+                yield cell, output
 
 
 def test_there_are_lessons():
     assert len(LESSONS) >= 3
+    assert len({lesson.number for lesson in LESSONS}) == len(LESSONS)
 
 
-@pytest.mark.parametrize("lesson", LESSONS, ids=[f.stem for f in LESSONS])
-def test_lesson_runs_as_a_notebook_and_writes_figures(executed, lesson):
-    outputs, errors = executed
-    assert errors[lesson] is None, errors[lesson]
-    folder = outputs / lesson.stem
-    figures = [p for p in folder.glob("*") if p.suffix in (".png", ".gif")]
-    assert figures, f"{lesson.stem} wrote no figure into {folder}"
+@pytest.mark.parametrize("stem", IDS)
+def test_lesson_runs_as_a_notebook_and_writes_figures(course, stem):
+    outputs, outcomes = course
+    assert outcomes[stem].ok, outcomes[stem].error
+    folder = outputs / stem
+    figures = [p for p in folder.rglob("*") if p.suffix in (".png", ".gif")]
+    assert figures, f"{stem} wrote no figure into {folder}"
     assert all(p.stat().st_size > 1000 for p in figures)
+    assert (folder / f"{stem}.ipynb").exists() and (folder / f"{stem}.html").exists()
+
+
+@pytest.mark.parametrize("stem", IDS)
+def test_every_figure_and_animation_is_shown_inline(course, stem):
+    outputs, _ = course
+    folder = outputs / stem
+    shown = {}
+    for _, output in code_outputs(notebook(outputs, stem)):
+        for mime in IMAGES:
+            if mime in output.get("data", {}):
+                name = output.metadata[FILE_KEY]
+                shown[name] = base64.b64decode(output.data[mime])
+    assert shown, f"{stem}: no inline image"
+    made = {
+        p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.suffix in (".png", ".gif")
+    }
+    assert made == set(shown), f"{stem}: files not shown inline: {sorted(made - set(shown))}"
+    for name, data in shown.items():  # inline is the very file, and a GIF stays a GIF
+        assert data == (folder / name).read_bytes(), name
+
+
+@pytest.mark.parametrize("stem", IDS)
+def test_each_table_is_shown_once_and_saved(course, stem):
+    outputs, _ = course
+    printed = 0
+    for cell, output in code_outputs(notebook(outputs, stem)):
+        if output.output_type == "stream":
+            printed += len(SEPARATOR.findall(output.text))
+        else:  # a table echoed as the cell's value, or displayed again
+            text = output.get("data", {}).get("text/plain", "")
+            assert not SEPARATOR.search(text), f"{stem}: a table shown twice in\n{cell.source}"
+    tables = outputs / stem / "tables.md"
+    saved = tables.read_text().count("\nTable ") if tables.exists() else 0
+    assert printed == saved, f"{stem}: {printed} tables printed, {saved} in tables.md"
+
+
+@pytest.mark.parametrize("stem", EXPLORERS)
+def test_explorer_cell_executes_with_its_defaults(course, stem):
+    outputs, _ = course
+    cells = [c for c in notebook(outputs, stem).cells if "explore(" in c.get("source", "")]
+    assert cells, f"{stem} has no explorer cell"
+    (output,) = [o for o in cells[-1].outputs if "image/png" in o.get("data", {})]
+    name = output.metadata[FILE_KEY]
+    assert name.startswith("explore_") and (outputs / stem / name).exists()
+    pytest.importorskip("ipywidgets")
+    # the live controls were built (the saved notebook keeps the figure: the widget needs a kernel)
+    assert len(output.metadata[CONTROLS_KEY]) >= 2
+
+
+def test_course_book_links_and_images_resolve_offline(course):
+    outputs, _ = course
+    index = outputs / "index.html"
+    text = index.read_text()
+    assert book_problems(index) == []
+    for stem in IDS:
+        for link in (f"{stem}/{stem}.html", f"{stem}/{stem}.ipynb", f"{stem}/tables.md"):
+            if (outputs / link).exists():
+                assert f'href="{link}"' in text, link
+        assert f'<img src="{stem}/' in text, f"{stem}: no thumbnail"

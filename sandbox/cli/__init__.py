@@ -1,4 +1,5 @@
-"""The command line: ``sandbox simulate | compare | lessons | schema`` (also ``python -m sandbox``).
+"""The command line: ``sandbox simulate | compare | lessons | scenes | schema`` (also
+``python -m sandbox``).
 
 One module per command (``sandbox/cli/<command>.py``, each with ``add_parser`` and ``run``);
 this one assembles the parser and turns every failure into one ``error:`` line.
@@ -13,15 +14,16 @@ import argparse
 import os
 import sys
 
-from sandbox.cli import compare, lessons, schema, simulate
+from sandbox.cli import compare, lessons, scenes, schema, simulate
 from sandbox.cli.common import CliError, Parser
 
-COMMANDS = (simulate, compare, lessons, schema)
+COMMANDS = (simulate, compare, lessons, scenes, schema)
 
 EXAMPLES = """examples:
   sandbox simulate scenes/drop.json --steps 240 --gif drop.gif
   sandbox compare scenes/stack.json --vary warm_start=false --out stack/
   sandbox lessons 01 07
+  sandbox scenes --copy my_scenes/
   sandbox schema > scene.schema.json
 
 sandbox COMMAND --help shows each command's options and examples."""

@@ -137,10 +137,18 @@ def parse_assignments(items: list[str] | None, option: str) -> list[tuple[str, o
 
 
 def load_spec(path: str, args: argparse.Namespace | None = None) -> dict:
-    """Read and validate a scene file, applying command-line setting overrides."""
+    """Read and validate a scene file, applying command-line setting overrides.
+
+    ``path`` may name a bundled example scene (``drop``) when no such file exists here; a line
+    says so.
+    """
+    from sandbox.bundled import resolve_scene
     from sandbox.scene import read_scene_file, validate_scene
 
-    spec = validate_scene(read_scene_file(path))
+    found, bundled = resolve_scene(path)
+    if bundled:
+        print(f"{path}: no such file here; using the bundled example scene {found.name}")
+    spec = validate_scene(read_scene_file(found))
     if args is not None:
         for key, value in parse_assignments(getattr(args, "set", None), "--set"):
             spec["settings"][key] = value

@@ -1,66 +1,136 @@
-"""``sandbox lessons [NAME ...]``: run lessons into ``outputs/``."""
+"""``sandbox lessons [NAME ...] [--out DIR]``: run lessons into ``outputs/``, as executed
+notebooks with their HTML pages when the notebook tools are installed (else as scripts), and
+write the course book ``outputs/index.html``."""
 
 from __future__ import annotations
 
 import argparse
 import os
-import subprocess
 import sys
-import time
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from sandbox.cli.common import CliError
+from sandbox.cli.common import CliError, field_type
+from sandbox.fieldspec import Field
+
+JOBS = Field("jobs", "integer", "lessons run at a time", None, "", lo=1, hi=64)
 
 
 def add_parser(sub) -> None:
     """The ``lessons`` command and its options."""
     les = sub.add_parser(
         "lessons",
-        help="run lessons into outputs/",
-        description="Run lessons (all, or those named) and write their figures into outputs/.",
-        epilog="examples:\n  sandbox lessons\n  sandbox lessons 01 07\n  sandbox lessons friction",
+        help="run lessons into ./outputs (notebooks, pages, figures)",
+        description="Run lessons (all, or those named) into ./outputs (inside a checkout, its\n"
+        "outputs/): figures, animations, tables.md, the executed notebook and its HTML page per\n"
+        "lesson, and the course book outputs/index.html.",
+        epilog="examples:\n  sandbox lessons\n  sandbox lessons 01 07\n  sandbox lessons friction"
+        "\n  sandbox lessons 10 --out course/",
     )
     les.add_argument(
-        "names", nargs="*", metavar="NAME", help="lesson number or part of its name (default: all)"
+        "names", nargs="*", metavar="NAME", help="a number (10), a file stem or part of a name"
+    )
+    les.add_argument("--out", metavar="DIR", help="write here instead of ./outputs")
+    les.add_argument(
+        "--jobs",
+        type=field_type(JOBS, "--jobs"),
+        default=None,
+        help="lessons run at a time (default: 2, or 1 on a single core)",
+    )
+    les.add_argument(
+        "--scripts",
+        action="store_true",
+        help="run as plain scripts: figures and tables only, no notebooks or pages",
     )
     les.set_defaults(func=run)
 
 
-def lesson_files(names: list[str] | None = None) -> list[Path]:
-    """Lesson scripts (``lessons/NN_*.py``) matching any of ``names`` (number or name)."""
+def default_outputs() -> Path:
+    """``./outputs``, or the checkout's ``outputs/`` when the working folder is inside one."""
     from sandbox.lessonkit import repo_root
 
-    folder = repo_root(Path(__file__).resolve().parent) / "lessons"
-    files = sorted(folder.glob("[0-9][0-9]_*.py"))
-    if not names:
-        return files
-    picked = []
-    for name in names:
-        match = [
-            f for f in files if f.stem == name or f.stem.split("_", 1)[0] == name or name in f.stem
-        ]
-        if not match:
-            raise CliError("NAME", f"no lesson matches {name!r}")
-        picked += [f for f in match if f not in picked]
-    return picked
+    root = repo_root()
+    inside = (root / "lessons").is_dir() and (root / "pyproject.toml").is_file()
+    return (root if inside else Path.cwd()) / "outputs"
+
+
+def output_folder(out: str | None) -> Path:
+    """The folder to write to (created); ``--out`` must be a folder in an existing one."""
+    folder = Path(out) if out else default_outputs()
+    if folder.exists() and not folder.is_dir():
+        raise CliError("--out", f"{str(folder)!r} is not a folder")
+    if not folder.exists() and not folder.absolute().parent.is_dir():
+        raise CliError("--out", f"folder {str(folder.absolute().parent)!r} does not exist")
+    folder.mkdir(exist_ok=True)
+    if not os.access(folder, os.W_OK):
+        raise CliError("--out", f"folder {str(folder)!r} is not writable")
+    return folder.resolve()
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run each lesson as a script in its own process."""
-    files = lesson_files(args.names)
-    root = files[0].parent.parent if files else Path.cwd()
-    failed = []
-    for f in files:
-        start = time.perf_counter()
-        print(f"== {f.stem}", flush=True)
-        env = {**os.environ, "MPLBACKEND": "Agg"}
-        result = subprocess.run([sys.executable, str(f)], cwd=root, env=env)
-        status = "ok" if result.returncode == 0 else f"FAILED ({result.returncode})"
-        print(f"== {f.stem}: {status} in {time.perf_counter() - start:.1f} s", flush=True)
-        if result.returncode:
-            failed.append(f.stem)
+    """Run each lesson (a notebook or a script, in its own process), then the course book."""
+    from sandbox.bundled import lessons_folder
+    from sandbox.course.book import write_book
+    from sandbox.course.catalogue import find_lessons, pick
+    from sandbox.course.links import book_problems
+    from sandbox.course.runner import INSTALL_HINT, missing_notebook_tools
+
+    lessons = find_lessons()
+    try:
+        chosen = pick(lessons, args.names)
+    except LookupError as err:
+        where = "NAME" if lessons else "lessons"
+        message = str(err) if lessons else f"no lesson found in {lessons_folder()}"
+        raise CliError(where, message) from None
+    outputs = output_folder(args.out)
+    missing = [] if args.scripts else missing_notebook_tools()
+    notebooks = not args.scripts and not missing
+    jobs = args.jobs or min(2, os.cpu_count() or 1)
+    kind = "executed notebooks with HTML pages" if notebooks else "scripts"
+    print(f"writing {len(chosen)} lessons to {outputs} as {kind}, {jobs} at a time", flush=True)
+    if missing:
+        print(f"note: notebooks and HTML pages need {INSTALL_HINT} (missing: {', '.join(missing)})")
+    outcomes = _run_all(chosen, outputs, notebooks, jobs)
+    note = "" if notebooks or args.scripts else f"Notebooks and pages need {INSTALL_HINT}."
+    book = write_book(lessons, outputs, note)
+    failed = [o.lesson.stem for o in outcomes if not o.ok]
+    print(f"course book: {book}")
+    problems = book_problems(book)
+    if problems:
+        print(f"warning: course book: {len(problems)} problems, e.g. {problems[0]}")
     if failed:
         print(f"error: lessons: {len(failed)} failed: {', '.join(failed)}", file=sys.stderr)
         return 1
-    print(f"{len(files)} lessons written to {root / 'outputs'}")
     return 0
+
+
+def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
+    """Run the lessons, ``jobs`` at a time; one line per lesson, in course order.
+
+    The first lesson runs alone: on a fresh install it compiles the engine's kernels into
+    numba's cache, which the lessons after it load instead of each compiling them again at the
+    same time. Each lesson writes only its own folder, so the outputs do not depend on ``jobs``.
+    """
+    from sandbox.course.runner import Outcome, kernel_specs, run_notebook, run_script
+
+    with tempfile.TemporaryDirectory(prefix="sandbox-kernel-") as tmp:
+        specs = kernel_specs(Path(tmp)) if notebooks else None
+
+        def one(lesson) -> Outcome:
+            try:
+                if specs is not None:
+                    return run_notebook(lesson, outputs, specs)
+                return run_script(lesson, outputs)
+            except Exception as err:  # the runner's own failure: one line, the others go on
+                return Outcome(lesson, 0.0, f"{type(err).__name__}: {err}")
+
+        def report(outcome: Outcome) -> Outcome:
+            status = "ok" if outcome.ok else f"FAILED: {outcome.error}"
+            print(f"== {outcome.lesson.stem}: {status} in {outcome.seconds:.1f} s", flush=True)
+            return outcome
+
+        outcomes = [report(one(chosen[0]))]
+        with ThreadPoolExecutor(max_workers=jobs) as pool:
+            outcomes += [report(outcome) for outcome in pool.map(one, chosen[1:])]
+    return outcomes

@@ -1,0 +1,1 @@
+"""The course's lessons, shipped inside the package as ``sandbox.lessons`` (package data)."""

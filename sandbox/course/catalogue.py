@@ -1,0 +1,104 @@
+"""Which lessons exist (``NN_name.py`` in the bundled lessons folder), what each is called and
+how it opens, and picking lessons by number, file stem or a unique part of the name."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+
+@dataclass(frozen=True)
+class Lesson:
+    """One lesson file: ``path`` is ``.../NN_name.py``."""
+
+    path: Path
+
+    @property
+    def stem(self) -> str:
+        return self.path.stem
+
+    @property
+    def number(self) -> int:
+        return int(self.stem.split("_", 1)[0])
+
+    @property
+    def title(self) -> str:
+        """The first Markdown heading (``# 10 Friction``), or the file stem."""
+        return self.intro()[0]
+
+    @property
+    def opening(self) -> str:
+        """The first paragraph after the title (Markdown), or ""."""
+        return self.intro()[1]
+
+    def intro(self) -> tuple[str, str]:
+        """``(title, opening paragraph)`` read from the first Markdown cell of the file."""
+        return read_intro(self.path.read_text(encoding="utf-8"), self.stem)
+
+
+def read_intro(source: str, fallback: str) -> tuple[str, str]:
+    """Title and opening paragraph of a jupytext percent-format lesson's first Markdown cell."""
+    lines = source.splitlines()
+    start = next((i for i, s in enumerate(lines) if s.startswith("# %% [markdown]")), None)
+    if start is None:
+        return fallback, ""
+    text = []
+    for line in lines[start + 1 :]:
+        if not line.startswith("#") or line.startswith("# %%"):
+            break
+        text.append(line[2:] if line.startswith("# ") else line[1:])
+    title, paragraph = fallback, []
+    for line in text:
+        if title == fallback and not paragraph and line.startswith("# "):
+            title = line[2:].strip()
+        elif line.strip():
+            paragraph.append(line.strip())
+        elif paragraph:
+            break
+    return title, _whole_sentences(" ".join(paragraph))
+
+
+def _whole_sentences(text: str) -> str:
+    """``text`` cut after its last full stop when it runs on into a formula or a list."""
+    if not text or text.rstrip("\"')").endswith((".", "!", "?")):
+        return text
+    cut = max(text.rfind(". "), text.rfind('". '), text.rfind(".) "))
+    return text[: text.index(" ", cut + 1)].rstrip() if cut > 0 else text
+
+
+def find_lessons(folder: Path | None = None) -> list[Lesson]:
+    """Every lesson, in course order (default folder: the bundled lessons)."""
+    if folder is None:
+        from sandbox.bundled import lessons_folder
+
+        folder = lessons_folder()
+    return [Lesson(p) for p in sorted(folder.glob("[0-9][0-9]_*.py"))]
+
+
+def pick(lessons: Sequence[Lesson], names: Sequence[str]) -> list[Lesson]:
+    """The lessons named by ``names`` (all when empty), each given by its number (``10``), its
+    file stem (``10_friction``) or a part of its name found in no other lesson (``friction``).
+
+    Raises ``LookupError`` with one line naming the lessons there are.
+    """
+    if not lessons:
+        raise LookupError("no lesson found")
+    if not names:
+        return list(lessons)
+    listing = ", ".join(lesson.stem for lesson in lessons)
+    picked: list[Lesson] = []
+    for name in names:
+        key = name.strip().lower().removesuffix(".py")
+        if key.isdigit():
+            match = [lesson for lesson in lessons if lesson.number == int(key)]
+        else:
+            match = [lesson for lesson in lessons if lesson.stem == key]
+            match = match or [lesson for lesson in lessons if key and key in lesson.stem.lower()]
+        if not match:
+            raise LookupError(f"no lesson matches {name!r}; the lessons are {listing}")
+        if len(match) > 1:
+            found = ", ".join(lesson.stem for lesson in match)
+            raise LookupError(f"{name!r} matches {found}: give one number or a longer name")
+        picked += [lesson for lesson in match if lesson not in picked]
+    return picked

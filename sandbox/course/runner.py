@@ -1,0 +1,190 @@
+"""Running one lesson into ``<outputs>/<lesson>/``: as an executed notebook (jupytext converts,
+nbclient executes in a fresh kernel, nbconvert renders the page) when the notebook tools are
+installed, else as a plain script. Either way its figures, animations and ``tables.md`` land in
+the lesson's folder.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from sandbox.course.catalogue import Lesson
+from sandbox.course.page import WIDGET_VIEW
+
+NOTEBOOK_TOOLS = ("jupytext", "nbformat", "nbclient", "ipykernel", "nbconvert")
+INSTALL_HINT = "pip install 'physics-sandbox[notebook]'"
+MADE = (".png", ".gif", ".md", ".ipynb", ".html", ".txt", ".csv", ".json")  # what lessons write
+CELL_TIMEOUT = 600  # s, one cell of one lesson
+
+
+@dataclass
+class Outcome:
+    """What running one lesson gave: ``error`` is one line, or "" when it ran through."""
+
+    lesson: Lesson
+    seconds: float
+    error: str = ""
+    written: list[Path] = field(default_factory=list)  # the notebook and its page, if made
+
+    @property
+    def ok(self) -> bool:
+        return not self.error
+
+
+def missing_notebook_tools() -> list[str]:
+    """The notebook tools that are not installed (executing and rendering need all of them)."""
+    return [name for name in NOTEBOOK_TOOLS if importlib.util.find_spec(name) is None]
+
+
+def lesson_env(outputs: Path) -> dict[str, str]:
+    """Environment of a lesson's process: where to write, Agg, no stray warnings."""
+    env = {**os.environ, "SANDBOX_OUTPUTS": str(outputs), "MPLBACKEND": "Agg"}
+    env["PYDEVD_DISABLE_FILE_VALIDATION"] = "1"  # the kernel's debugger warns on stderr otherwise
+    env["JUPYTER_PLATFORM_DIRS"] = "1"
+    return env
+
+
+def clear_folder(folder: Path) -> None:
+    """Remove what an earlier run of the lesson wrote there (its kinds of file only)."""
+    if not folder.is_dir():
+        return
+    for path in sorted(folder.rglob("*"), reverse=True):
+        if path.is_file() and path.suffix.lower() in MADE:
+            path.unlink()
+        elif path.is_dir() and not any(path.iterdir()):
+            path.rmdir()
+
+
+def run_script(lesson: Lesson, outputs: Path) -> Outcome:
+    """Run the lesson as ``python NN_name.py``; its printed output is kept from the console
+    (the tables are in ``tables.md``) and shown only when it fails."""
+    folder = outputs / lesson.stem
+    clear_folder(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    start = time.perf_counter()
+    result = subprocess.run(
+        [sys.executable, str(lesson.path)],
+        cwd=folder,
+        env=lesson_env(outputs),
+        capture_output=True,
+        text=True,
+    )
+    error = ""
+    if result.returncode:
+        tail = (result.stderr or result.stdout).strip().splitlines()
+        error = f"exit status {result.returncode}: {tail[-1] if tail else 'no output'}"
+    return Outcome(lesson, time.perf_counter() - start, error)
+
+
+def kernel_specs(folder: Path) -> Path:
+    """A kernel spec ``python3`` for this very interpreter, written under ``folder``.
+
+    Using it (rather than whatever ``python3`` kernel Jupyter finds first on the machine) makes
+    every lesson run with the same ``sandbox`` as the command that runs it.
+    """
+    from ipykernel.kernelspec import write_kernel_spec
+
+    specs = folder / "kernels"
+    if not (specs / "python3" / "kernel.json").exists():
+        write_kernel_spec(str(specs / "python3"))
+    return specs
+
+
+def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
+    """Execute the lesson as a notebook and write ``NN_name.ipynb`` and ``NN_name.html``.
+
+    ``specs`` is the folder of :func:`kernel_specs`. A failing cell stops the run; the notebook
+    and page are still written, showing the error where it happened.
+    """
+    import jupytext
+    import nbclient
+    import nbformat
+    from jupyter_client.kernelspec import KernelSpecManager
+    from jupyter_client.manager import KernelManager
+
+    from sandbox.atomic import atomic_write_text
+    from sandbox.course.page import render_page
+
+    folder = outputs / lesson.stem
+    clear_folder(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    start = time.perf_counter()
+    nb = jupytext.read(lesson.path)
+    nb.metadata.pop("jupytext", None)
+    for i, cell in enumerate(nb.cells):  # the same notebook on every run (jupytext draws ids)
+        cell.id = f"cell-{i}"
+    nb.metadata["kernelspec"] = {
+        "name": "python3",
+        "display_name": "Python 3",
+        "language": "python",
+    }
+    manager = KernelManager(
+        kernel_name="python3",
+        kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(specs)], ensure_native_kernel=False),
+    )
+    if os.name == "posix":  # local sockets in the private folder rather than TCP ports
+        manager.transport, manager.ip = "ipc", str(specs.parent / lesson.stem)
+    client = nbclient.NotebookClient(
+        nb,
+        km=manager,
+        timeout=CELL_TIMEOUT,
+        record_timing=False,  # the same notebook on every run
+        store_widget_state=False,  # an explorer's saved state would only repeat its figure
+        resources={"metadata": {"path": str(folder)}},
+    )
+    error = ""
+    try:
+        client.execute(env=lesson_env(outputs))
+    except nbclient.exceptions.CellExecutionError as err:
+        error = _cell_error(err)
+    except Exception as err:  # a kernel that died or timed out
+        error = f"{type(err).__name__}: {' '.join(str(err).split())[:300]}"
+    finally:
+        if manager.has_kernel:
+            manager.shutdown_kernel(now=True)
+    settle(nb)
+    notebook = folder / f"{lesson.stem}.ipynb"
+    atomic_write_text(notebook, nbformat.writes(nb) + "\n")
+    written = [notebook]
+    page = folder / f"{lesson.stem}.html"
+    nav = {"course book": "../index.html", "notebook": notebook.name}
+    if (folder / "tables.md").exists():
+        nav["tables"] = "tables.md"
+    try:
+        atomic_write_text(page, render_page(nb, folder, lesson.title, nav))
+        written.append(page)
+    except Exception as err:  # the notebook is written; say why its page is not
+        error = error or f"HTML page: {type(err).__name__}: {' '.join(str(err).split())[:300]}"
+    return Outcome(lesson, time.perf_counter() - start, error, written)
+
+
+def settle(nb) -> None:
+    """Make an executed notebook the same on every run: a cell's printed output as one stream
+    (the kernel splits it where its messages happened to be cut), and an explorer shown by its
+    figure (its live widget cannot be shown once the kernel is gone; a rerun brings it back)."""
+    for cell in nb.cells:
+        merged: list = []
+        for output in cell.get("outputs", []):
+            last = merged[-1] if merged else None
+            same = last is not None and last.output_type == "stream"
+            if same and output.output_type == "stream" and last.name == output.name:
+                last.text += output.text
+                continue
+            if output.get("data"):
+                output.data.pop(WIDGET_VIEW, None)
+            merged.append(output)
+        if "outputs" in cell:
+            cell.outputs = merged
+
+
+def _cell_error(err: Exception) -> str:
+    """One line for a failing cell: the exception's name and message."""
+    name = getattr(err, "ename", "") or type(err).__name__
+    value = getattr(err, "evalue", "") or str(err).strip().splitlines()[-1]
+    return f"{name}: {' '.join(str(value).split())[:300]}"

@@ -1,0 +1,1 @@
+"""The example scenes, shipped inside the package as ``sandbox.scenes`` (package data)."""
