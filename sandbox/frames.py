@@ -80,7 +80,8 @@ class FrameRenderer:
     moving body's origin path so far, an int only its last ``trail`` frames. ``view``:
     ``(xmin, xmax, ymin, ymax)`` in metres (default: every shape in every frame), grown by
     ``margin`` and to equal aspect. ``axes``: draw ticks in metres. Image height is ``size_px``;
-    width is ``size_px`` plus ``panel_width * size_px`` with a panel.
+    width is ``size_px`` plus ``panel_width * size_px`` with a panel. Labels, title and panel
+    names are drawn exactly as given (no mathtext: they often hold scene and body names).
     """
 
     def __init__(
@@ -158,7 +159,7 @@ class FrameRenderer:
         ax.set_xlim(self.view[0], self.view[1])
         ax.set_ylim(self.view[2], self.view[3])
         if title:
-            ax.set_title(title, fontsize=fontsize)
+            ax.set_title(title, fontsize=fontsize, parse_math=False)  # literal: user text
 
         lw = max(0.72, 1.0 * scale)  # points; never thinner than one pixel (0.72 pt at 100 dpi)
         jlw = max(0.72, JOINT_WIDTH * lw)
@@ -225,6 +226,8 @@ class FrameRenderer:
                 for c, lab in zip(self.colors, labels, strict=True)
             ]
             legend = ax.legend(handles=handles, loc="upper right", fontsize=fontsize)
+            for text in legend.get_texts():
+                text.set_parse_math(False)  # a scene or body name with "$" is shown as typed
             legend.set_animated(True)
             self.animated.append(legend)
         self.time_text = None
@@ -282,7 +285,7 @@ class FrameRenderer:
             ax.autoscale_view()
             ax.set_autoscale_on(False)  # the cursor and dots must not move the limits
             ax.set_xlim(t0, t1 if t1 > t0 else t0 + 1.0)
-            ax.set_ylabel(name, fontsize=fontsize)
+            ax.set_ylabel(name, fontsize=fontsize, parse_math=False)
             ax.tick_params(labelsize=fontsize)
             ax.grid(alpha=0.3)
             if j == len(panels) - 1:
