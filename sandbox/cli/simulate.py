@@ -12,6 +12,7 @@ import argparse
 import contextlib
 import math
 
+from sandbox import replay
 from sandbox.cli.common import (
     MAX_STEPS,
     cache_note,
@@ -24,7 +25,6 @@ from sandbox.cli.common import (
     shown,
     steps_count,
 )
-from sandbox.replay import MAX_FRAMES
 from sandbox.settings import CHOICES
 
 
@@ -79,7 +79,6 @@ def run(args: argparse.Namespace) -> int:
     """Run the scene and write what was asked for, as one set of files."""
     from sandbox.atomic import output_set
     from sandbox.build import build_world
-    from sandbox.replay import RowSampler, frame_stride
     from sandbox.trace import TraceWriter, check_finite
 
     for option, path, suffix in (
@@ -101,8 +100,11 @@ def run(args: argparse.Namespace) -> int:
         cache_note()
     dt, n = spec["dt"], len(world.bodies)
     natural = steps_per_frame(dt, args.fps, args.steps)
-    gif = RowSampler(world, frame_stride(args.steps, natural)) if args.gif else None
-    png = RowSampler(world, frame_stride(args.steps), keep_last=True) if args.png else None
+    limit, gif, png = replay.MAX_FRAMES, None, None  # frames kept, however long the run
+    if args.gif:
+        gif = replay.RowSampler(world, replay.frame_stride(args.steps, natural, limit))
+    if args.png:  # the view of the picture fits the whole run; it shows the last step
+        png = replay.RowSampler(world, replay.frame_stride(args.steps, 1, limit), keep_last=True)
     samplers = [s for s in (gif, png) if s is not None]
     written = []
     last: list = []
@@ -143,7 +145,7 @@ def _gif_note(frames: int, every: int, natural: int, dt: float, args) -> str:
     if every > natural:  # more steps than MAX_FRAMES frames at the asked rate can show
         speed = every * dt * args.fps
         text += (
-            f", one every {every:,} steps to keep at most {MAX_FRAMES} frames: "
+            f", one every {every:,} steps to keep at most {replay.MAX_FRAMES} frames: "
             f"plays {speed:.3g} times faster than real time"
         )
     return text
