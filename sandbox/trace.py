@@ -69,8 +69,11 @@ def run_world(world, steps: int, dt: float | None = None, on_step=None) -> Itera
 
 def check_finite(rows: Sequence[Row]) -> None:
     """Raise :class:`~sandbox.SimulationError` naming the first row whose numbers are not finite."""
+    finite = math.isfinite
     for row in rows:
-        if not all(math.isfinite(v) for v in row[3:]) or not math.isfinite(row[1]):
+        _, t, _, x, y, angle, vx, vy, omega = row
+        ok = finite(x) and finite(y) and finite(angle) and finite(vx) and finite(vy)
+        if not (ok and finite(omega) and finite(t)):
             raise SimulationError(
                 str(row[2]),
                 int(row[0]),

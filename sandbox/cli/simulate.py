@@ -111,9 +111,10 @@ def run(args: argparse.Namespace) -> int:
     with output_set(), contextlib.ExitStack() as stack:
         trace = stack.enter_context(TraceWriter(args.trace)) if args.trace else None
         for step, t, rows in steps:
-            check_finite(rows)
             if trace is not None:
-                trace.write(rows)
+                trace.write(rows)  # refuses rows that are not finite
+            else:
+                check_finite(rows)  # a diverged run is reported, never drawn
             for sampler in samplers:
                 sampler.add(step, t, rows)
             last = rows
