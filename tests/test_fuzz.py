@@ -257,7 +257,7 @@ def check_contract(status, out, err, written, folder):
     assert sorted(p.name for p in folder.iterdir()) == ["scene.json"]  # nothing written
 
 
-@settings(max_examples=120, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=200, suppress_health_check=[HealthCheck.too_slow])
 @given(scenes(), command_lines())
 def test_simulate_keeps_the_contract_on_malformed_and_extreme_input(text, command):
     args, outputs = command
