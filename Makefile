@@ -4,29 +4,47 @@ PY ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+DEV_STAMP := $(VENV)/.installed-dev
 
-.PHONY: lessons test lint format bench clean
+.PHONY: lessons test test-bounds lint format docs bench clean
 
+# the project with what the tests need (the `test` extra)
 $(STAMP): pyproject.toml
 	$(PY) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q -e '.[test]'
 	touch $(STAMP)
 
+# everything a developer uses: tests, ruff, the docs site, building the wheel (the `dev` extra)
+$(DEV_STAMP): $(STAMP)
+	$(BIN)/python -m pip install -q -e '.[dev]'
+	touch $(DEV_STAMP)
+
 lessons: $(STAMP)
 	$(BIN)/sandbox lessons
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
+	$(MAKE) test-bounds
 
-lint: $(STAMP)
+# the world tests again with numba's array bounds checks on (its own compile cache): an
+# out-of-bounds index in a kernel fails a test instead of corrupting memory
+test-bounds: $(STAMP)
+	NUMBA_BOUNDSCHECK=1 NUMBA_CACHE_DIR=$(CURDIR)/.numba-boundscheck \
+		$(BIN)/python -m pytest -q -p no:cacheprovider tests/test_settings_change.py
+
+lint: $(DEV_STAMP)
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .
 
-format: $(STAMP)
+format: $(DEV_STAMP)
 	$(BIN)/ruff format . && $(BIN)/ruff check --fix .
+
+# the user reference into site/ (warnings are errors)
+docs: $(DEV_STAMP)
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --site-dir site
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py
 
 clean:
-	rm -rf $(VENV) outputs/*/ .pytest_cache
+	rm -rf $(VENV) outputs/*/ .pytest_cache site

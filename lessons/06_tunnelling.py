@@ -160,6 +160,9 @@ save_figure(fig, OUT / "bullet_x.png", dpi=100)
 TARGET, TOL = 0.25 * MARGIN, 0.25 * 0.25 * MARGIN  # what the world's ccd uses
 no_verts = np.zeros((0, 2))
 wall_verts = box_vertices(H, WALL_HEIGHT)  # relative to the wall's centre of mass
+# shapes as sandbox.toi takes them: (kind 0 circle / 1 polygon, radius, centre, vertices)
+BULLET = (0, R, np.zeros(2), no_verts)
+WALL = (1, 0.0, np.zeros(2), wall_verts)
 
 
 def advance(p0, p1) -> tuple[list, float]:
@@ -168,10 +171,7 @@ def advance(p0, p1) -> tuple[list, float]:
     t, rows = 0.0, []
     for it in range(20):
         p = p0 + t * (p1 - p0)
-        d, nx, ny = distance(
-            0, R, np.zeros(2), no_verts, p, 0.0, 1, 0.0, np.zeros(2), wall_verts,
-            np.array([WALL_X, 0.0]), 0.0,
-        )  # fmt: skip
+        d, nx, ny = distance(BULLET, (p, 0.0), WALL, (np.array([WALL_X, 0.0]), 0.0))
         # d is measured from the bullet (a) towards the wall (b); n points the same way
         closing = abs((p1 - p0) @ np.array([nx, ny]))
         rows.append((it, t, p[0], p[1], d, f"({nx:+.3f}, {ny:+.3f})", closing))
@@ -184,11 +184,9 @@ def advance(p0, p1) -> tuple[list, float]:
 
 
 def engine_toi(p0, p1) -> float:
-    return time_of_impact(
-        0, R, np.zeros(2), no_verts, np.asarray(p0, float), 0.0, np.asarray(p1, float), 0.0,
-        1, 0.0, np.zeros(2), wall_verts, np.array([WALL_X, 0.0]), 0.0,
-        np.array([WALL_X, 0.0]), 0.0, TARGET, TOL,
-    )  # fmt: skip
+    wall_at = np.array([WALL_X, 0.0])
+    bullet_motion = (np.asarray(p0, float), 0.0, np.asarray(p1, float), 0.0)
+    return time_of_impact(BULLET, bullet_motion, WALL, (wall_at, 0.0, wall_at, 0.0), TARGET, TOL)
 
 
 head_on = ((xs["no ccd"][1], 0.0), (xs["no ccd"][2], 0.0))  # the step that tunnels

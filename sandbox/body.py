@@ -12,9 +12,18 @@ import math
 
 import numpy as np
 
+from sandbox.vec2 import Vec2
+
 DYNAMIC, STATIC, KINEMATIC = 0, 1, 2
 TYPES = {"dynamic": DYNAMIC, "static": STATIC, "kinematic": KINEMATIC}
 TYPE_NAMES = {v: k for k, v in TYPES.items()}
+
+
+def _checked(name: str, value):
+    """``value`` checked as the body field ``name`` (the scene files' rules; SceneError)."""
+    from sandbox.arguments import check_arguments
+
+    return check_arguments("Body", "body", {name: value})[name]
 
 
 def _rot(c: float, s: float, v) -> np.ndarray:
@@ -42,8 +51,25 @@ class Body:
         force=(0.0, 0.0),
         torque: float = 0.0,
     ) -> None:
-        if type not in TYPES:
-            raise ValueError(f"type: expected one of {sorted(TYPES)}, got {type!r}")
+        from sandbox.arguments import check_arguments, check_body_name
+
+        check_body_name(name, type)
+        check_arguments(
+            "Body",
+            "body",
+            {
+                "type": type,
+                "position": position,
+                "angle": angle,
+                "velocity": velocity,
+                "angular_velocity": angular_velocity,
+                "mass": mass,
+                "moment": moment,
+                "ccd": ccd,
+                "force": force,
+                "torque": torque,
+            },
+        )
         self.name = name
         self.type = type
         self.shapes: list = []
@@ -106,6 +132,7 @@ class Body:
 
     @constant_force.setter
     def constant_force(self, value) -> None:
+        value = _checked("force", value)
         if self.world is None:
             self._constant = (np.array(value, dtype=float), self._constant[1])
         else:
@@ -121,6 +148,7 @@ class Body:
 
     @constant_torque.setter
     def constant_torque(self, value: float) -> None:
+        value = _checked("torque", value)
         if self.world is None:
             self._constant = (self._constant[0], float(value))
         else:
@@ -138,20 +166,23 @@ class Body:
         return TYPES[self.type]
 
     @property
-    def position(self) -> tuple[float, float]:
+    def position(self) -> Vec2:
         """World position of the body origin (m)."""
         if self.world is None:
-            return tuple(self._init["position"])
+            return Vec2(*self._init["position"])
         w, i = self.world, self.index
         c, s = w.cs[i]
         lc = w.local_com[i]
-        return (
+        return Vec2(
             float(w.com[i, 0] - (c * lc[0] - s * lc[1])),
             float(w.com[i, 1] - (s * lc[0] + c * lc[1])),
         )
 
     @position.setter
     def position(self, value) -> None:
+        self._place(_checked("position", value))
+
+    def _place(self, value) -> None:
         if self.world is None:
             self._init["position"] = np.array(value, dtype=float)
             return
@@ -160,37 +191,39 @@ class Body:
         w._state_changed()
 
     @property
-    def center_of_mass(self) -> tuple[float, float]:
+    def center_of_mass(self) -> Vec2:
         """World position of the centre of mass (m)."""
         w = self._w()
-        return (float(w.com[self.index, 0]), float(w.com[self.index, 1]))
+        return Vec2(float(w.com[self.index, 0]), float(w.com[self.index, 1]))
 
     @property
     def angle(self) -> float:
-        """Orientation in radians, in [-pi, pi]."""
+        """Orientation in radians, continuous: turns accumulate (as in pymunk)."""
         if self.world is None:
             return self._init["angle"]
-        return float(self.world.angles()[self.index])
+        return float(self.world.state["angle"][self.index])
 
     @angle.setter
     def angle(self, value: float) -> None:
+        value = _checked("angle", value)
         if self.world is None:
             self._init["angle"] = float(value)
             return
         origin = self.position
         self.world._set_angle(self.index, float(value))
-        self.position = origin
+        self._place(origin)
 
     @property
-    def velocity(self) -> tuple[float, float]:
+    def velocity(self) -> Vec2:
         """Velocity of the centre of mass (m/s)."""
         if self.world is None:
-            return tuple(self._init["velocity"])
+            return Vec2(*self._init["velocity"])
         v = self.world.vel[self.index]
-        return (float(v[0]), float(v[1]))
+        return Vec2(float(v[0]), float(v[1]))
 
     @velocity.setter
     def velocity(self, value) -> None:
+        value = _checked("velocity", value)
         if self.world is None:
             self._init["velocity"] = np.array(value, dtype=float)
         else:
@@ -206,6 +239,7 @@ class Body:
 
     @angular_velocity.setter
     def angular_velocity(self, value: float) -> None:
+        value = _checked("angular_velocity", value)
         if self.world is None:
             self._init["angular_velocity"] = float(value)
         else:
@@ -231,23 +265,23 @@ class Body:
         return self._init["ccd"] if self.world is None else bool(self.world.ccd[self.index])
 
     # --- frames -------------------------------------------------------------------------------
-    def world_point(self, local) -> np.ndarray:
+    def world_point(self, local) -> Vec2:
         """Body-frame point (about the origin) to world coordinates (m)."""
         c, s = math.cos(self.angle), math.sin(self.angle)
-        return np.asarray(self.position) + _rot(c, s, local)
+        return Vec2(*(np.asarray(self.position) + _rot(c, s, local)))
 
-    def local_point(self, point) -> np.ndarray:
+    def local_point(self, point) -> Vec2:
         """World point to the body frame (about the origin)."""
         c, s = math.cos(self.angle), math.sin(self.angle)
         d = np.asarray(point, dtype=float) - np.asarray(self.position)
-        return _rot(c, -s, d)
+        return Vec2(*_rot(c, -s, d))
 
-    def velocity_at(self, point) -> np.ndarray:
+    def velocity_at(self, point) -> Vec2:
         """Velocity of the material point at world ``point``: v + omega x r (m/s)."""
         w = self._w()
         r = np.asarray(point, dtype=float) - w.com[self.index]
         om = w.omega[self.index]
-        return w.vel[self.index] + om * np.array([-r[1], r[0]])
+        return Vec2(*(w.vel[self.index] + om * np.array([-r[1], r[0]])))
 
     # --- forces -------------------------------------------------------------------------------
     def apply_force(self, force, point=None) -> None:

@@ -1,10 +1,11 @@
-"""Scene dict (validated, see :mod:`sandbox.scene`) to :class:`~sandbox.world.World`, and back."""
+"""Scene dict (validated, see :mod:`sandbox.scene`) to :class:`~sandbox.world.World`; the way
+back is :func:`sandbox.scene_export.world_to_scene`."""
 
 from __future__ import annotations
 
 from sandbox.body import Body
-from sandbox.settings import SCENE_KEYS
-from sandbox.shapes import shape_from_dict, shape_to_dict
+from sandbox.scene_export import world_to_scene
+from sandbox.shapes import shape_from_dict
 from sandbox.world import World
 
 
@@ -14,7 +15,7 @@ def build_world(spec: dict) -> World:
         gravity=spec["gravity"],
         dt=spec["dt"],
         name=spec.get("name", "scene"),
-        **{k: spec["settings"][k] for k in SCENE_KEYS},
+        **spec["settings"],  # the contract keys and any other setting the scene gives
     )
     for b in spec["bodies"]:
         body = Body(
@@ -47,36 +48,4 @@ def build_world(spec: dict) -> World:
     return world
 
 
-def world_to_scene(world: World) -> dict:
-    """The scene-file dict of a world, its current state taken as the initial state."""
-    bodies = []
-    for body in world.bodies:
-        entry = {
-            "name": body.name,
-            "type": body.type,
-            "position": list(body.position),
-            "angle": body.angle,
-            "velocity": list(body.velocity),
-            "angular_velocity": body.angular_velocity,
-            "ccd": body.ccd,
-            "shapes": [shape_to_dict(s) for s in body.shapes],
-        }
-        if body.mass_override is not None:
-            entry["mass"] = float(body.mass_override)
-        if body.moment_override is not None:
-            entry["moment"] = float(body.moment_override)
-        if body.constant_force.any():
-            entry["force"] = body.constant_force.tolist()
-        if body.constant_torque:
-            entry["torque"] = body.constant_torque
-        bodies.append(entry)
-    return {
-        "version": 1,
-        "name": world.name,
-        "gravity": world.gravity.tolist(),
-        "dt": world.dt,
-        "settings": world.settings.scene_dict(),
-        "bodies": bodies,
-        "joints": [j.to_dict() for j in world.joints],
-        "forces": [f.to_dict() for f in world.forces],
-    }
+__all__ = ["build_world", "world_to_scene"]

@@ -14,21 +14,25 @@ metres); the closed forms at the bottom give the draft of a floating box or disc
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 
 import numpy as np
 
+from sandbox.jit import njit
+from sandbox.math2d import rotate
+from sandbox.records import CIRCLE, DYNAMIC
 
-def polygon_area_centroid(points: Sequence[Sequence[float]]) -> tuple[float, float, float]:
-    """Area (>= 0, m^2) and centroid (x, y) of a simple polygon, either winding (shoelace)."""
-    n = len(points)
+
+@njit
+def polygon_area_centroid(points: np.ndarray, n: int) -> tuple[float, float, float]:
+    """Area (>= 0, m^2) and centroid (x, y) of the simple polygon ``points[:n]`` (rows x, y),
+    either winding (shoelace, as a fan of triangles from vertex 0)."""
     if n < 3:
         return 0.0, 0.0, 0.0
     a2 = cx = cy = 0.0
-    x0, y0 = points[0]
-    for i in range(1, n - 1):  # fan of triangles from vertex 0
-        x1, y1 = points[i]
-        x2, y2 = points[i + 1]
+    x0, y0 = points[0, 0], points[0, 1]
+    for i in range(1, n - 1):
+        x1, y1 = points[i, 0], points[i, 1]
+        x2, y2 = points[i + 1, 0], points[i + 1, 1]
         cross = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
         a2 += cross
         cx += cross * (x0 + x1 + x2)
@@ -38,25 +42,35 @@ def polygon_area_centroid(points: Sequence[Sequence[float]]) -> tuple[float, flo
     return abs(0.5 * a2), cx / (3.0 * a2), cy / (3.0 * a2)
 
 
-def clip_below(points: Sequence[Sequence[float]], surface_y: float) -> list[tuple[float, float]]:
-    """The part of a convex polygon with y <= surface_y (Sutherland-Hodgman, one clip line)."""
-    out: list[tuple[float, float]] = []
-    n = len(points)
+@njit
+def clip_below(points: np.ndarray, n: int, surface_y: float, out: np.ndarray) -> int:
+    """The part of the convex polygon ``points[:n]`` with y <= surface_y (Sutherland-Hodgman,
+    one clip line), written to ``out`` (at least 2n rows); returns its vertex count."""
+    k = 0
     for i in range(n):
-        xa, ya = points[i]
-        xb, yb = points[(i + 1) % n]
+        xa, ya = points[i, 0], points[i, 1]
+        xb, yb = points[(i + 1) % n, 0], points[(i + 1) % n, 1]
         if ya <= surface_y:
-            out.append((xa, ya))
+            out[k, 0], out[k, 1] = xa, ya
+            k += 1
         if (ya <= surface_y) != (yb <= surface_y):  # the edge crosses the surface
             t = (surface_y - ya) / (yb - ya)
-            out.append((xa + t * (xb - xa), surface_y))
-    return out
+            out[k, 0], out[k, 1] = xa + t * (xb - xa), surface_y
+            k += 1
+    return k
 
 
-def circle_submerged(
-    cx: float, cy: float, radius: float, surface_y: float
-) -> tuple[float, float, float]:
-    """Area and centroid (x, y) of the part of a circle below y = surface_y.
+@njit
+def polygon_submerged(points: np.ndarray, surface_y: float) -> tuple[float, float, float]:
+    """Submerged area and its centroid of a convex polygon (world frame rows x, y)."""
+    n = points.shape[0]
+    out = np.empty((2 * n, 2))
+    return polygon_area_centroid(out, clip_below(points, n, surface_y, out))
+
+
+@njit
+def circle_submerged(cx: float, cy: float, radius: float, surface_y: float):
+    """Area below ``surface_y`` of the circle (centre, radius) and that area's centroid.
 
     With d = surface_y - cy and h = sqrt(r^2 - d^2): the cap above the line has area
     r^2 acos(d/r) - d h; the submerged part is the rest, with centroid cy - 2 h^3 / (3 A).
@@ -73,45 +87,48 @@ def circle_submerged(
     return area, cx, cy - 2.0 * h**3 / (3.0 * area)
 
 
-def submerged_by_body(
-    geometry, p: np.ndarray, phi: np.ndarray, surface_y: float, targets: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Submerged area A (n,) and its centroid c (n, 2) of every body marked in ``targets``.
+@njit
+def shape_submerged(shape, vertices, px: float, py: float, phi: float, surface_y: float):
+    """Submerged area and centroid of one shape record of a body at (px, py), angle phi."""
+    c, s = math.cos(phi), math.sin(phi)
+    if shape["kind"] == CIRCLE:
+        x, y = rotate(c, s, shape["center"][0], shape["center"][1])
+        return circle_submerged(px + x, py + y, shape["radius"], surface_y)
+    first, n = shape["first_vertex"], shape["vertex_count"]
+    points = np.empty((n, 2))
+    for v in range(n):
+        q = vertices[first + v]["point"]
+        x, y = rotate(c, s, q[0], q[1])
+        points[v, 0], points[v, 1] = px + x, py + y
+    return polygon_submerged(points, surface_y)
 
-    ``geometry`` is the world's flattened shape arrays (:class:`sandbox.geometry_arrays.Geometry`,
-    shapes about each body's centre of mass); ``p`` (n, 2) centres of mass and ``phi`` (n,)
-    angles place them (a shape point q is at p + R(phi) q). A body's shapes are summed: A is the
-    total, c the area-weighted mean of the parts' centroids. Bodies out of the water get A = 0 and
-    c = p.
-    """
-    n = len(p)
+
+@njit
+def submerged_by_body(bodies, shapes, vertices, state, surface_y: float, bit: np.uint64):
+    """Submerged area A (n,) and its centroid c (n, 2) of every dynamic body acted on by the
+    generator ``bit`` (``BODY["generators"]``), at the integrator's ``state`` (MOTION records).
+    A body's shapes are summed: A is the total, c the area-weighted mean of the parts'
+    centroids. Bodies out of the water get A = 0 and c = their centre of mass."""
+    n = bodies.shape[0]
     area = np.zeros(n)
-    moment = np.zeros((n, 2))
-    for k in range(len(geometry)):
-        i = int(geometry.shape_body[k])
-        if not targets[i]:
+    centroid = np.zeros((n, 2))
+    for k in range(shapes.shape[0]):
+        i = shapes[k]["body"]
+        if bodies[i]["kind"] != DYNAMIC or not (bodies[i]["generators"] & bit):
             continue
-        px, py = float(p[i, 0]), float(p[i, 1])
-        if py - float(geometry.shape_bound[k]) > surface_y:
+        px, py, phi = state[i]["p"][0], state[i]["p"][1], state[i]["phi"]
+        if py - shapes[k]["bound"] > surface_y:
             continue  # the whole shape is above the water
-        c, s = math.cos(float(phi[i])), math.sin(float(phi[i]))
-        if geometry.shape_kind[k] == 0:  # circle
-            qx, qy = geometry.shape_center[k]
-            a, x, y = circle_submerged(
-                px + c * qx - s * qy, py + s * qx + c * qy, float(geometry.shape_radius[k]),
-                surface_y,
-            )  # fmt: skip
-        else:
-            start, count = int(geometry.shape_vstart[k]), int(geometry.shape_vcount[k])
-            local = geometry.verts[start : start + count]
-            points = [(px + c * qx - s * qy, py + s * qx + c * qy) for qx, qy in local]
-            a, x, y = polygon_area_centroid(clip_below(points, surface_y))
+        a, x, y = shape_submerged(shapes[k], vertices, px, py, phi, surface_y)
         area[i] += a
-        moment[i, 0] += a * x
-        moment[i, 1] += a * y
-    centroid = np.array(p, dtype=float, copy=True)
-    wet = area > 0.0
-    centroid[wet] = moment[wet] / area[wet, None]
+        centroid[i, 0] += a * x
+        centroid[i, 1] += a * y
+    for i in range(n):
+        if area[i] > 0.0:
+            centroid[i, 0] /= area[i]
+            centroid[i, 1] /= area[i]
+        else:
+            centroid[i, 0], centroid[i, 1] = state[i]["p"][0], state[i]["p"][1]
     return area, centroid
 
 

@@ -2,7 +2,8 @@
 
 ``compare(spec, steps, out_dir)`` runs a scene in this engine and in pymunk (same dt, gravity and
 solver iterations, built from the same scene dict by :mod:`sandbox.pymunk_bridge`), plus one more
-run of this engine per variant setting (``variants={"solver": ["pairwise"]}``), and writes into
+run of this engine per variant setting (``variants={"solver": ["pairwise"], "warm_start":
+[False]}``: any world setting), and writes into
 ``out_dir``:
 
 - ``trace_sandbox.csv``, ``trace_pymunk.csv``, ``trace_<key>_<value>.csv`` per variant
@@ -34,11 +35,11 @@ from pathlib import Path
 import numpy as np
 
 from sandbox.atomic import atomic_write, atomic_write_text, make_folder, output_set
-from sandbox.settings import CHOICES
+from sandbox.settings import Settings
 
 __all__ = ["ComparisonResult", "Run", "compare", "pymunk_energy", "run_pymunk_scene", "run_sandbox"]
 
-VARIANT_KEYS = ("solver", "orientation", "integrator", "broadphase", "penetration", "iterations")
+VARIANT_KEYS = Settings.names()  # any world setting may vary
 GIF_MAX_FRAMES = 150  # longer runs skip steps between frames
 RUN_COLORS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C8", "C9")
 
@@ -156,7 +157,7 @@ def run_sandbox(spec: dict, steps: int, label: str = "sandbox", overrides=None) 
     energy = [world.energy()]
     rows = list(run_world(world, steps, on_step=lambda w: energy.append(w.energy())))
     times, poses, vels = _arrays(rows, len(world.bodies))
-    slug = "sandbox" if not overrides else "_".join(f"{k}_{v}" for k, v in overrides.items())
+    slug = "_".join(f"{k}_{_shown(v)}" for k, v in (overrides or {}).items()) or "sandbox"
     return Run(label, slug, dict(overrides or {}), times, poses, vels, np.array(energy), rows)
 
 
@@ -174,25 +175,33 @@ def run_pymunk_scene(scene, steps: int) -> Run:
 
 
 def _variant_specs(spec: dict, variants: Mapping[str, Sequence] | None) -> list[tuple[dict, dict]]:
-    """(overrides, scene dict) per requested variant; values equal to the scene's are skipped."""
+    """(overrides, scene dict) per requested variant; values equal to the scene's are skipped.
+
+    Any world setting may vary (``{"warm_start": [False]}``); each value is checked as a scene
+    file's ``settings`` would be (ValueError naming ``variants.<key>``).
+    """
+    from sandbox.fieldspec import check_value
     from sandbox.scene import validate_scene
+    from sandbox.settings import FIELDS, unknown_setting
 
     out: list[tuple[dict, dict]] = []
     seen = set()
     for key, values in (variants or {}).items():
-        if key not in VARIANT_KEYS:
-            raise ValueError(f"variants.{key}: expected one of {', '.join(VARIANT_KEYS)}")
+        if key not in FIELDS:
+            raise unknown_setting(key, f"variants.{key}")
         for value in values or ():
-            if key in CHOICES and value not in CHOICES[key]:
-                raise ValueError(
-                    f"variants.{key}: expected one of {', '.join(CHOICES[key])}, got {value!r}"
-                )
-            if spec["settings"][key] == value or (key, value) in seen:
+            value = check_value(FIELDS[key], value, f"variants.{key}")
+            if spec["settings"].get(key, FIELDS[key].default) == value or (key, value) in seen:
                 continue
             seen.add((key, value))
             changed = {**spec, "settings": {**spec["settings"], key: value}}
             out.append(({key: value}, validate_scene(changed)))
     return out
+
+
+def _shown(value) -> str:
+    """A setting's value as a label or file name shows it (``false``, not ``False``)."""
+    return str(value).lower() if isinstance(value, bool) else str(value)
 
 
 # ---------------------------------------------------------------- deviations and the table
@@ -383,7 +392,7 @@ def compare(
 
     runs = [run_sandbox(spec, steps), run_pymunk_scene(scene, steps)]
     for overrides, variant in extra:
-        label = "sandbox " + " ".join(f"{k}={v}" for k, v in overrides.items())
+        label = "sandbox " + " ".join(f"{k}={_shown(v)}" for k, v in overrides.items())
         runs.append(run_sandbox(variant, steps, label, overrides))
 
     names = [b["name"] for b in spec["bodies"]]

@@ -17,6 +17,7 @@ markers, and the water is part of the background.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -27,13 +28,14 @@ from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from sandbox.recording import (
-    OutlineArrays,
-    Recording,
-    bounds,
-    place,
-    zigzag,
-)
+from sandbox.debug_draw import LayerArtists
+from sandbox.energy_bars import PANEL, EnergyBars
+from sandbox.layer_key import COLORS as LAYER_COLORS
+from sandbox.layer_key import SLEEP_FACE, draw_key, key_layout
+from sandbox.outlines import OutlineArrays, bounds, place, zigzag
+from sandbox.overlays import Layers
+from sandbox.recording import Recording
+from sandbox.series_panels import SeriesPanels
 
 DEFAULT_COLORS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C8", "C9")
 STATIC_FACE = (0.62, 0.62, 0.62, 0.7)
@@ -44,6 +46,7 @@ WATER_EDGE = (0.16, 0.45, 0.85, 0.9)
 JOINT_WIDTH = 0.75  # joint lines, as a fraction of the outline width (never below one pixel)
 SPRING_HALF_WIDTH_PX = 4.0  # a spring's zig-zag peaks, pixels off its axis at 480 px
 _DPI = 100
+CIRCLE_SIDES = 20  # a circle is drawn as a regular polygon of this many sides
 PROGRESS_FRAMES = 50  # renders longer than this show a progress bar (on a terminal)
 
 
@@ -79,9 +82,14 @@ class FrameRenderer:
     name or list of names plotted beside the scene against time. ``trail``: True draws each
     moving body's origin path so far, an int only its last ``trail`` frames. ``view``:
     ``(xmin, xmax, ymin, ymax)`` in metres (default: every shape in every frame), grown by
-    ``margin`` and to equal aspect. ``axes``: draw ticks in metres. Image height is ``size_px``;
-    width is ``size_px`` plus ``panel_width * size_px`` with a panel. Labels, title and panel
-    names are drawn exactly as given (no mathtext: they often hold scene and body names).
+    ``margin`` and to equal aspect. ``axes``: draw ticks in metres. ``draw``: debug-drawing
+    layers (``"contacts,impulses"``, a list, or a :class:`~sandbox.overlays.Layers` with arrow
+    scales; see :mod:`sandbox.overlays`) over the bodies, with a key below the scene.
+    ``panel="energy-bars"`` draws the energy bars (:mod:`sandbox.energy_bars`) beside it.
+
+    Image size: the scene is ``size_px`` square; a panel adds ``size_px`` to the width, the
+    layers' key a strip to the height. Labels and title are drawn exactly as given (no
+    mathtext: they often hold scene and body names).
     """
 
     def __init__(
@@ -97,8 +105,7 @@ class FrameRenderer:
         axes: bool = False,
         show_time: bool = True,
         title: str | None = None,
-        circle_sides: int = 20,
-        panel_width: float = 1.0,
+        draw: str | Sequence[str] | Layers | None = None,
     ) -> None:
         self.runs = as_runs(runs)
         for r in self.runs:
@@ -108,7 +115,7 @@ class FrameRenderer:
             raise ValueError(f"size_px must be at least 16, got {size_px}")
         self.n_frames = max(len(r) for r in self.runs)
         self.poses = [r.poses() for r in self.runs]
-        self.shapes = [OutlineArrays.of(r, circle_sides) for r in self.runs]
+        self.shapes = [OutlineArrays.of(r, CIRCLE_SIDES) for r in self.runs]
         self.joint_ends = [r.joint_segments() for r in self.runs]  # (F, J, 2, 2) per run
         self.fluids = sorted({y for r in self.runs for y in r.fluids})
         colors = list(colors) if colors is not None else list(DEFAULT_COLORS)
@@ -120,22 +127,35 @@ class FrameRenderer:
         if labels is not None and len(labels) != len(self.runs):
             raise ValueError(f"{len(self.runs)} runs need as many labels, got {len(labels)}")
         panels = [panel] if isinstance(panel, str) else list(panel or [])
-        for name in panels:
+        self.energy = PANEL in panels
+        if self.energy and len(panels) > 1:
+            raise ValueError(f"panel {PANEL!r} cannot share the panel with series {panels}")
+        for name in [] if self.energy else panels:
             for i, r in enumerate(self.runs):
                 if name not in r.series:
                     raise KeyError(f"run {i} has no series {name!r} (has {sorted(r.series)})")
         self.trail = int(trail) if not isinstance(trail, bool) else (-1 if trail else 0)
 
+        layers = Layers.of(draw)
         scale = size_px / 480.0
-        width_px = size_px + (int(round(panel_width * size_px)) if panels else 0)
-        self.fig = Figure(figsize=(width_px / _DPI, size_px / _DPI), dpi=_DPI)
-        self.canvas = FigureCanvasAgg(self.fig)
+        width_px = size_px + (size_px if panels else 0)
         fontsize = max(5.0, 9.0 * scale)
         em = fontsize * _DPI / 72.0  # font size in pixels
+        key_columns, key_px = key_layout(layers.names, width_px, scale, em)
+        self.key_px = int(math.ceil(key_px))  # rows of the key strip at the bottom
+        height_px = size_px + self.key_px
+        self.fig = Figure(figsize=(width_px / _DPI, height_px / _DPI), dpi=_DPI)
+        self.canvas = FigureCanvasAgg(self.fig)
+
+        def rect(x: float, y: float, w: float, h: float) -> tuple[float, ...]:
+            """Figure fractions of a box in pixels, y from the bottom of the scene."""
+            return (x / width_px, (y + self.key_px) / height_px, w / width_px, h / height_px)
+
+        self._rect = rect
         pad = 3.2 * em if axes else 0.0  # room for tick labels
         top = 0.3 * pad + (1.8 * em if title else 0.0)
         box_w, box_h = size_px - 1.3 * pad, size_px - pad - top
-        ax = self.fig.add_axes((pad / width_px, pad / size_px, box_w / width_px, box_h / size_px))
+        ax = self.fig.add_axes(rect(pad, pad, box_w, box_h))
         self.ax = ax
         if not axes:
             ax.set_axis_off()
@@ -167,7 +187,7 @@ class FrameRenderer:
         metres_per_px = (self.view[3] - self.view[2]) / box_h
         self.spring_half_width = SPRING_HALF_WIDTH_PX * scale * metres_per_px
         self.polys, self.markers, self.trails = [], [], []
-        self.joint_lines, self.pivots = [], []
+        self.joint_lines, self.pivots, self.faces = [], [], []
         for color, shapes, run in zip(self.colors, self.shapes, self.runs, strict=True):
             kinds = np.array([j.kind for j in run.joints], dtype=object)
             lines = np.flatnonzero(kinds != "pivot")
@@ -195,6 +215,7 @@ class FrameRenderer:
             face = np.tile((*color[:3], FILL_ALPHA), (len(shapes.body), 1))
             edge = np.tile(color, (len(shapes.body), 1))
             face[shapes.static], edge[shapes.static] = STATIC_FACE, STATIC_EDGE
+            self.faces.append(face)
             poly = PolyCollection(
                 [], facecolors=face, edgecolors=edge, linewidths=lw, animated=True
             )
@@ -214,12 +235,19 @@ class FrameRenderer:
                 ax.add_collection(line)
                 self.trails.append(line)
         self.movers = [np.array([t != "static" for t in r.types], dtype=bool) for r in self.runs]
+        self.layers = None
+        if layers.names:
+            self.layers = LayerArtists(ax, self.runs, self.shapes, layers, metres_per_px, scale)
+            key_ax = self.fig.add_axes((0.0, 0.0, 1.0, self.key_px / height_px))
+            draw_key(key_ax, self.layers.key(), key_columns, scale, fontsize)
         self.animated: list[Any] = [*self.trails]  # drawn over the saved background, in order
         for i, (poly, markers) in enumerate(zip(self.polys, self.markers, strict=True)):
             joints, pivots = self.joint_lines[i][2], self.pivots[i][1]
             self.animated += [joints] if joints is not None else []  # strings under the bodies
             self.animated += [poly, *(line for _, line in markers)]
             self.animated += [pivots] if pivots is not None else []  # hinges on top
+        if self.layers is not None:  # over every run's bodies
+            self.animated += self.layers.artists
         if labels is not None:
             handles = [
                 Patch(facecolor=(*c[:3], FILL_ALPHA), edgecolor=c, label=str(lab))
@@ -243,7 +271,17 @@ class FrameRenderer:
                 animated=True,
             )
             self.animated.append(self.time_text)
-        self._build_panels(panels, size_px, width_px, scale, fontsize)
+        self.bars = self.series = None
+        if self.energy:
+            em = fontsize * _DPI / 72.0
+            box = rect(size_px + 10.5 * em, 6.6 * em, size_px - 12.0 * em, size_px - 8.6 * em)
+            self.bars = EnergyBars(self.fig.add_axes(box), self.runs, self.colors, fontsize)
+            self.animated += self.bars.artists
+        elif panels:
+            self.series = SeriesPanels(
+                self.fig, rect, self.runs, self.colors, panels, size_px, scale, fontsize
+            )
+            self.animated += self.series.artists
         self.canvas.draw()
         self.background = self.canvas.copy_from_bbox(self.fig.bbox)
 
@@ -258,53 +296,6 @@ class FrameRenderer:
             if surface < ymax:
                 self.ax.axhline(surface, color=WATER_EDGE, linewidth=linewidth, zorder=0.6)
 
-    def _build_panels(
-        self, panels: list[str], size_px: int, width_px: int, scale: float, fontsize: float
-    ) -> None:
-        self.cursors, self.dots = [], []
-        if not panels:
-            return
-        em = fontsize * _DPI / 72.0  # font size in pixels: margins leave room for tick labels
-        left, right, bottom, top, gap = 5.8 * em, 1.0 * em, 3.8 * em, 1.0 * em, 1.4 * em
-        h = (size_px - bottom - top - gap * (len(panels) - 1)) / len(panels)
-        t_all = np.concatenate([np.asarray(r.times, dtype=float) for r in self.runs])
-        t0, t1 = float(t_all.min()), float(t_all.max())
-        for j, name in enumerate(panels):
-            y = bottom + (len(panels) - 1 - j) * (h + gap)
-            ax = self.fig.add_axes(
-                (
-                    (size_px + left) / width_px,
-                    y / size_px,
-                    (width_px - size_px - left - right) / width_px,
-                    h / size_px,
-                )
-            )
-            for r, c in zip(self.runs, self.colors, strict=True):
-                ax.plot(r.times, r.series[name], color=c, linewidth=1.2 * scale)
-            ax.relim()
-            ax.autoscale_view()
-            ax.set_autoscale_on(False)  # the cursor and dots must not move the limits
-            ax.set_xlim(t0, t1 if t1 > t0 else t0 + 1.0)
-            ax.set_ylabel(name, fontsize=fontsize, parse_math=False)
-            ax.tick_params(labelsize=fontsize)
-            ax.grid(alpha=0.3)
-            if j == len(panels) - 1:
-                ax.set_xlabel("t (s)", fontsize=fontsize)
-            else:
-                ax.tick_params(labelbottom=False)
-            cursor = ax.axvline(t0, color="0.2", linewidth=0.8 * scale, animated=True)
-            dots = ax.scatter(
-                np.zeros(len(self.runs)),
-                np.zeros(len(self.runs)),
-                c=self.colors,
-                s=18 * scale**2,
-                zorder=3,
-                animated=True,
-            )
-            self.cursors.append((name, cursor))
-            self.dots.append(dots)
-            self.animated += [cursor, dots]
-
     @property
     def size(self) -> tuple[int, int]:
         """Image (width, height) in pixels."""
@@ -317,9 +308,14 @@ class FrameRenderer:
             raise IndexError(f"frame {k} out of range for {self.n_frames} frames")
         k %= self.n_frames
         ks = [min(k, len(r) - 1) for r in self.runs]
+        placed: list[np.ndarray] = []
         for i, (shapes, poses) in enumerate(zip(self.shapes, self.poses, strict=True)):
             pose = poses[ks[i]]
-            self.polys[i].set_verts(place(shapes.local, shapes.body, pose))
+            placed.append(place(shapes.local, shapes.body, pose))
+            self.polys[i].set_verts(placed[i])
+            if self.layers is not None and "sleep" in self.layers.names:
+                faces = self.layers.faces(i, ks[i], self.faces[i])
+                self.polys[i].set_facecolor(self.faces[i] if faces is None else faces)
             ends = place(shapes.marker, shapes.body, pose)
             for index, line in self.markers[i]:
                 xy = ends[index].reshape(-1, 2)
@@ -341,13 +337,15 @@ class FrameRenderer:
                 start = 0 if self.trail < 0 else max(0, ks[i] - self.trail + 1)
                 path = poses[start : ks[i] + 1][:, self.movers[i], :2]
                 self.trails[i].set_segments(path.transpose(1, 0, 2))
+        if self.layers is not None:
+            self.layers.update(ks, placed)
+        if self.bars is not None:
+            self.bars.update(ks)
         times = [r.times[kr] for r, kr in zip(self.runs, ks, strict=True)]
         if self.time_text is not None:
             self.time_text.set_text(f"t = {times[0]:.2f} s")
-        for (name, cursor), dots in zip(self.cursors, self.dots, strict=True):
-            cursor.set_xdata([times[0], times[0]])
-            values = [r.series[name][kr] for r, kr in zip(self.runs, ks, strict=True)]
-            dots.set_offsets(np.column_stack([times, values]))
+        if self.series is not None:
+            self.series.update(ks, times)
         self.canvas.restore_region(self.background)
         for artist in self.animated:
             artist.axes.draw_artist(artist)
@@ -360,6 +358,10 @@ class FrameRenderer:
             cols += [WATER_FACE, WATER_EDGE]
         for c in self.colors:
             cols += [c, (*c[:3], FILL_ALPHA), (*c[:3], 0.6)]
+        # the layers' colours always: a drawn GIF and a plain one share their palette
+        cols += [to_rgba(c) for c in (*LAYER_COLORS.values(), SLEEP_FACE)]
+        if self.bars is not None:
+            cols += [to_rgba(c) for c in self.bars.colors()]
         rgb = [np.array(c[:3]) * c[3] + (1.0 - c[3]) for c in cols]  # over a white background
         return np.clip(np.round(np.array(rgb) * 255), 0, 255).astype(np.uint8)
 

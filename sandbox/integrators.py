@@ -18,7 +18,10 @@ from collections.abc import Callable
 
 import numpy as np
 
+from sandbox.forces import accumulate_forces
 from sandbox.jit import njit
+from sandbox.orientation import turn_body
+from sandbox.records import DYNAMIC, MOTION, SPRING, STATIC
 
 Accel = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
 Increments = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
@@ -107,65 +110,205 @@ def constant_acceleration(a: np.ndarray, alpha: np.ndarray | float = 0.0) -> Acc
     return accel
 
 
-# --- the two Euler methods compiled over the world's arrays (the fast path of World.step) -------
-# Same formulas as explicit_euler / semi_implicit_euler above, split in two halves so that the
-# contact and joint impulses can change the velocity in between.
+# --- the world's integration stages (compiled, over the body records) --------------------------
+# The same formulas as above, for every body at once. The velocity stage applies the
+# integrator's velocity increment and remembers its free-motion move; contact and joint impulses
+# then change the velocity, and the position stage moves each body by the free move plus what
+# the impulses changed: p += dp + (v - v_free) dt (so a body in free flight follows its
+# integrator exactly, e.g. the slides' explicit Euler table).
+
+EXPLICIT_EULER, SEMI_IMPLICIT_EULER, VERLET, RK4, ANALYTIC = range(5)
+CODES = {name: code for code, name in enumerate(NAMES)}
 
 
 @njit
-def euler_velocities(
-    kind: np.ndarray,
-    vel: np.ndarray,
-    omega: np.ndarray,
-    force: np.ndarray,
-    torque: np.ndarray,
-    inv_mass: np.ndarray,
-    inv_moment: np.ndarray,
-    gx: float,
-    gy: float,
-    dt: float,
-) -> None:
-    """v' = v + a dt, omega' = omega + alpha dt for dynamic bodies (kind 0), a = g + F / m."""
-    for i in range(kind.shape[0]):
-        if kind[i] != 0:
-            continue
-        vel[i, 0] += (gx + force[i, 0] * inv_mass[i]) * dt
-        vel[i, 1] += (gy + force[i, 1] * inv_mass[i]) * dt
-        omega[i] += torque[i] * inv_moment[i] * dt
+def accelerations(model, gravity, state, out) -> None:
+    """The time derivative of ``state`` (MOTION records) into ``out``: (v, a, w, alpha) with
+    a = g + F / m and alpha = tau / I for dynamic bodies (zero for the others), F and tau every
+    force at that state (:func:`sandbox.forces.accumulate_forces`). ``model``: the world's
+    (bodies, shapes, vertices, joints, generators) records."""
+    bodies, shapes, vertices, joints, generators = model
+    accumulate_forces(bodies, shapes, vertices, joints, generators, state, gravity, out)
+    for i in range(bodies.shape[0]):
+        b, d = bodies[i], out[i]
+        d["p"][0], d["p"][1], d["phi"] = state[i]["v"][0], state[i]["v"][1], state[i]["w"]
+        if b["kind"] == DYNAMIC:
+            d["v"][0] = gravity[0] + d["v"][0] * b["inv_mass"]
+            d["v"][1] = gravity[1] + d["v"][1] * b["inv_mass"]
+            d["w"] = d["w"] * b["inv_moment"]
+        else:
+            d["v"][0] = d["v"][1] = d["w"] = 0.0
 
 
 @njit
-def euler_positions(
-    kind: np.ndarray,
-    com: np.ndarray,
-    vel: np.ndarray,
-    omega: np.ndarray,
-    force: np.ndarray,
-    torque: np.ndarray,
-    inv_mass: np.ndarray,
-    inv_moment: np.ndarray,
-    gx: float,
-    gy: float,
-    dt: float,
-    explicit: bool,
-    dphi: np.ndarray,
-) -> None:
-    """p' = p + v dt with the new velocity (semi-implicit) or the old one (explicit: v - a dt).
+def advanced(y, d, h: float, out) -> None:
+    """out = y + h d, field by field (a state moved along a derivative for a time h)."""
+    for i in range(y.shape[0]):
+        for k in range(2):
+            out[i]["p"][k] = y[i]["p"][k] + h * d[i]["p"][k]
+            out[i]["v"][k] = y[i]["v"][k] + h * d[i]["v"][k]
+        out[i]["phi"] = y[i]["phi"] + h * d[i]["phi"]
+        out[i]["w"] = y[i]["w"] + h * d[i]["w"]
 
-    Writes each body's turn omega dt into ``dphi`` (for the orientation update) and clears the
-    force and torque accumulators. Static bodies (kind 1) do not move.
-    """
-    for i in range(kind.shape[0]):
-        if kind[i] == 1:
-            dphi[i] = 0.0
+
+@njit
+def free_increments(model, gravity, method: int, dt: float, inc) -> None:
+    """The integrator's increments of one step of free motion for every body, into ``inc``
+    (MOTION records holding dp, dv, dphi, dw), with every force evaluated where the method
+    looks (the slides' formulas, as :func:`explicit_euler` ... :func:`rk4` above)."""
+    bodies = model[0]
+    n = bodies.shape[0]
+    y = np.zeros(n, dtype=MOTION)
+    for i in range(n):
+        b = bodies[i]
+        y[i]["p"][0], y[i]["p"][1], y[i]["phi"] = b["com"][0], b["com"][1], b["angle"]
+        y[i]["v"][0], y[i]["v"][1], y[i]["w"] = b["vel"][0], b["vel"][1], b["omega"]
+    k1 = np.zeros(n, dtype=MOTION)
+    accelerations(model, gravity, y, k1)
+    if method == EXPLICIT_EULER:  # p' = p + v dt, v' = v + a dt, both from the old state
+        for i in range(n):
+            for k in range(2):
+                inc[i]["p"][k] = k1[i]["p"][k] * dt
+                inc[i]["v"][k] = k1[i]["v"][k] * dt
+            inc[i]["phi"] = k1[i]["phi"] * dt
+            inc[i]["w"] = k1[i]["w"] * dt
+        return
+    if method == SEMI_IMPLICIT_EULER:  # v' = v + a dt first, then p' = p + v' dt
+        for i in range(n):
+            for k in range(2):
+                inc[i]["v"][k] = k1[i]["v"][k] * dt
+                inc[i]["p"][k] = (y[i]["v"][k] + inc[i]["v"][k]) * dt
+            inc[i]["w"] = k1[i]["w"] * dt
+            inc[i]["phi"] = (y[i]["w"] + inc[i]["w"]) * dt
+        return
+    y1 = np.zeros(n, dtype=MOTION)
+    if method == VERLET:  # p' = p + v dt + a dt^2/2, v' = v + (a + a') dt / 2
+        advanced(y, k1, dt, y1)  # p + v dt, v + a dt (Euler's guess of v')
+        for i in range(n):
+            for k in range(2):
+                y1[i]["p"][k] += 0.5 * k1[i]["v"][k] * dt * dt
+            y1[i]["phi"] += 0.5 * k1[i]["w"] * dt * dt
+        k2 = np.zeros(n, dtype=MOTION)
+        accelerations(model, gravity, y1, k2)
+        for i in range(n):
+            for k in range(2):
+                inc[i]["p"][k] = y1[i]["p"][k] - y[i]["p"][k]
+                inc[i]["v"][k] = 0.5 * (k1[i]["v"][k] + k2[i]["v"][k]) * dt
+            inc[i]["phi"] = y1[i]["phi"] - y[i]["phi"]
+            inc[i]["w"] = 0.5 * (k1[i]["w"] + k2[i]["w"]) * dt
+        return
+    # RK4: k1 = f(y), k2 = f(y + dt/2 k1), k3 = f(y + dt/2 k2), k4 = f(y + dt k3)
+    k2, k3, k4 = np.zeros(n, dtype=MOTION), np.zeros(n, dtype=MOTION), np.zeros(n, dtype=MOTION)
+    advanced(y, k1, 0.5 * dt, y1)
+    accelerations(model, gravity, y1, k2)
+    advanced(y, k2, 0.5 * dt, y1)
+    accelerations(model, gravity, y1, k3)
+    advanced(y, k3, dt, y1)
+    accelerations(model, gravity, y1, k4)
+    for i in range(n):  # y' - y = dt/6 (k1 + 2 k2 + 2 k3 + k4)
+        for k in range(2):
+            inc[i]["p"][k] = (
+                dt
+                / 6.0
+                * (k1[i]["p"][k] + 2.0 * k2[i]["p"][k] + 2.0 * k3[i]["p"][k] + k4[i]["p"][k])
+            )
+            inc[i]["v"][k] = (
+                dt
+                / 6.0
+                * (k1[i]["v"][k] + 2.0 * k2[i]["v"][k] + 2.0 * k3[i]["v"][k] + k4[i]["v"][k])
+            )
+        inc[i]["phi"] = (
+            dt / 6.0 * (k1[i]["phi"] + 2.0 * k2[i]["phi"] + 2.0 * k3[i]["phi"] + k4[i]["phi"])
+        )
+        inc[i]["w"] = dt / 6.0 * (k1[i]["w"] + 2.0 * k2[i]["w"] + 2.0 * k3[i]["w"] + k4[i]["w"])
+
+
+@njit
+def has_fields(joints, generators) -> bool:
+    """Whether any force depends on the state (a generator or a spring)."""
+    if generators.shape[0] > 0:
+        return True
+    for k in range(joints.shape[0]):
+        if joints[k]["kind"] == SPRING:
+            return True
+    return False
+
+
+@njit
+def euler_velocity(b, gravity, dt: float, explicit: bool) -> None:
+    """One body's Euler step under its constant acceleration a = g + F / m, alpha = tau / I:
+    v' = v + a dt; the free move is v dt (explicit, the slides' table) or v' dt."""
+    for k in range(2):
+        v0 = b["vel"][k]
+        b["vel"][k] = v0 + (gravity[k] + b["force"][k] * b["inv_mass"]) * dt
+        b["free_move"][k] = (v0 if explicit else b["vel"][k]) * dt
+    w0 = b["omega"]
+    b["omega"] = w0 + b["torque"] * b["inv_moment"] * dt
+    b["free_turn"] = (w0 if explicit else b["omega"]) * dt
+
+
+@njit
+def integrate_velocities(model, context) -> None:
+    """The velocity stage: each dynamic body's velocity gets the integrator's increment;
+    its free-motion move is remembered for :func:`integrate_positions`. Kinematic bodies move
+    at their own velocity; static bodies do not move."""
+    ctx = context[0]
+    bodies, _, _, joints, generators = model
+    dt, method, gravity = ctx["dt"], ctx["integrator"], ctx["gravity"]
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        for k in range(2):
+            b["force"][k] += b["const_force"][k]
+            b["applied_force"][k] = b["force"][k]
+        b["torque"] += b["const_torque"]
+        b["applied_torque"] = b["torque"]
+    fields = has_fields(joints, generators)
+    inc = np.zeros(bodies.shape[0] if fields or method > SEMI_IMPLICIT_EULER else 0, dtype=MOTION)
+    if inc.shape[0] > 0:
+        free_increments(model, gravity, method, dt, inc)
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        if b["kind"] == DYNAMIC and inc.shape[0] == 0:
+            euler_velocity(b, gravity, dt, method == EXPLICIT_EULER)
+        elif b["kind"] == DYNAMIC:
+            for k in range(2):
+                b["vel"][k] += inc[i]["v"][k]
+                b["free_move"][k] = inc[i]["p"][k]
+            b["omega"] += inc[i]["w"]
+            b["free_turn"] = inc[i]["phi"]
+        else:
+            moving = b["kind"] != STATIC
+            for k in range(2):
+                b["free_move"][k] = b["vel"][k] * dt if moving else 0.0
+            b["free_turn"] = b["omega"] * dt if moving else 0.0
+        b["free_vel"][0], b["free_vel"][1], b["free_omega"] = b["vel"][0], b["vel"][1], b["omega"]
+
+
+@njit
+def plan_motion(bodies, dt: float) -> None:
+    """Each body's move this step: the free move plus what the impulses changed,
+    dp = dp_free + (v - v_free) dt (and likewise for the turn)."""
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        if b["kind"] == STATIC:
+            b["motion"][0] = b["motion"][1] = b["motion_turn"] = 0.0
             continue
-        vx, vy, w = vel[i, 0], vel[i, 1], omega[i]
-        if explicit and kind[i] == 0:  # the slides' p' = p + v dt uses the step's first velocity
-            vx -= (gx + force[i, 0] * inv_mass[i]) * dt
-            vy -= (gy + force[i, 1] * inv_mass[i]) * dt
-            w -= torque[i] * inv_moment[i] * dt
-        com[i, 0] += vx * dt
-        com[i, 1] += vy * dt
-        dphi[i] = w * dt
-    force[:] = 0.0
-    torque[:] = 0.0
+        for k in range(2):
+            b["motion"][k] = b["free_move"][k] + (b["vel"][k] - b["free_vel"][k]) * dt
+        b["motion_turn"] = b["free_turn"] + (b["omega"] - b["free_omega"]) * dt
+
+
+@njit
+def move_bodies(bodies, rot, context) -> None:
+    """Apply each body's planned move and turn (orientation in the world's representation),
+    then clear the force accumulators for the next step."""
+    ctx = context[0]
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        if b["kind"] != STATIC:
+            for k in range(2):
+                b["com"][k] += b["motion"][k]
+                b["delta_position"][k] += b["motion"][k]
+            if b["motion_turn"] != 0.0 or ctx["renormalise"]:
+                turn_body(bodies, rot, i, ctx["orientation"], b["motion_turn"], ctx["renormalise"])
+        b["force"][0] = b["force"][1] = b["torque"] = 0.0

@@ -151,64 +151,108 @@ def make_orientation(
 def set_angles(kind: int, rot: np.ndarray, angles: np.ndarray) -> None:
     """Store each angle (rad) in row i of ``rot`` in the layout of representation ``kind``."""
     for i in range(rot.shape[0]):
-        c, s = math.cos(angles[i]), math.sin(angles[i])
-        if kind == ANGLE:
-            rot[i, 0] = wrap_angle(angles[i])
-        elif kind == COMPLEX:
-            rot[i, 0] = c
-            rot[i, 1] = s
-        else:
-            rot[i, 0] = c
-            rot[i, 1] = -s
-            rot[i, 2] = s
-            rot[i, 3] = c
+        set_angle_row(kind, rot, i, angles[i])
+
+
+@njit
+def turn_row(kind: int, rot: np.ndarray, i: int, d: float, renormalise: bool) -> None:
+    """Turn row i of ``rot`` by the angle increment d = omega dt in the layout of ``kind``."""
+    if kind == ANGLE:
+        rot[i, 0] = wrap_angle(rot[i, 0] + d)  # option 1
+        return
+    c, s = math.cos(d), math.sin(d)
+    if kind == COMPLEX:
+        zr, zi = rot[i, 0], rot[i, 1]  # option 3: z e^{i d}
+        zr, zi = zr * c - zi * s, zr * s + zi * c
+        if renormalise:
+            inv = 1.0 / math.sqrt(zr * zr + zi * zi)
+            zr *= inv
+            zi *= inv
+        rot[i, 0] = zr
+        rot[i, 1] = zi
+    else:
+        m00, m01, m10, m11 = rot[i, 0], rot[i, 1], rot[i, 2], rot[i, 3]  # option 2: Phi R(d)
+        n00, n01 = m00 * c + m01 * s, -m00 * s + m01 * c
+        n10, n11 = m10 * c + m11 * s, -m10 * s + m11 * c
+        if renormalise:  # Gram-Schmidt on the first column
+            inv = 1.0 / math.sqrt(n00 * n00 + n10 * n10)
+            n00 *= inv
+            n10 *= inv
+            n01, n11 = -n10, n00
+        rot[i, 0], rot[i, 1], rot[i, 2], rot[i, 3] = n00, n01, n10, n11
+
+
+@njit
+def cos_sin_row(kind: int, rot: np.ndarray, i: int) -> tuple[float, float]:
+    """(cos, sin) of the orientation in row i, as collision code reads it."""
+    if kind == ANGLE:
+        return math.cos(rot[i, 0]), math.sin(rot[i, 0])
+    if kind == COMPLEX:
+        return rot[i, 0], rot[i, 1]
+    return rot[i, 0], rot[i, 2]
 
 
 @njit
 def integrate_rotations(kind: int, rot: np.ndarray, dphi: np.ndarray, renormalise: bool) -> None:
     """Turn every body by its increment dphi = omega dt in the layout of ``kind`` (in place)."""
     for i in range(rot.shape[0]):
-        d = dphi[i]
-        if d == 0.0 and not renormalise:
-            continue
-        if kind == ANGLE:
-            rot[i, 0] = wrap_angle(rot[i, 0] + d)  # option 1
-            continue
-        c, s = math.cos(d), math.sin(d)
-        if kind == COMPLEX:
-            zr, zi = rot[i, 0], rot[i, 1]  # option 3: z e^{i d}
-            zr, zi = zr * c - zi * s, zr * s + zi * c
-            if renormalise:
-                inv = 1.0 / math.sqrt(zr * zr + zi * zi)
-                zr *= inv
-                zi *= inv
-            rot[i, 0] = zr
-            rot[i, 1] = zi
-        else:
-            m00, m01, m10, m11 = rot[i, 0], rot[i, 1], rot[i, 2], rot[i, 3]  # option 2: Phi R(d)
-            n00, n01 = m00 * c + m01 * s, -m00 * s + m01 * c
-            n10, n11 = m10 * c + m11 * s, -m10 * s + m11 * c
-            if renormalise:  # Gram-Schmidt on the first column
-                inv = 1.0 / math.sqrt(n00 * n00 + n10 * n10)
-                n00 *= inv
-                n10 *= inv
-                n01, n11 = -n10, n00
-            rot[i, 0], rot[i, 1], rot[i, 2], rot[i, 3] = n00, n01, n10, n11
+        if dphi[i] != 0.0 or renormalise:
+            turn_row(kind, rot, i, dphi[i], renormalise)
 
 
 @njit
 def cos_sin(kind: int, rot: np.ndarray, cs: np.ndarray) -> None:
     """Fill ``cs`` (n, 2) with (cos, sin) of each orientation, as collision code reads them."""
     for i in range(rot.shape[0]):
-        if kind == ANGLE:
-            cs[i, 0] = math.cos(rot[i, 0])
-            cs[i, 1] = math.sin(rot[i, 0])
-        elif kind == COMPLEX:
-            cs[i, 0] = rot[i, 0]
-            cs[i, 1] = rot[i, 1]
-        else:
-            cs[i, 0] = rot[i, 0]
-            cs[i, 1] = rot[i, 2]
+        cs[i, 0], cs[i, 1] = cos_sin_row(kind, rot, i)
+
+
+@njit
+def turn_body(bodies, rot: np.ndarray, i: int, kind: int, d: float, renormalise: bool) -> None:
+    """Turn body i by d radians: its stored orientation, its (cos, sin) read back from it, and
+    its continuous angle, the sum of every turn (so turns accumulate whatever the
+    representation; it differs from the stored orientation's angle by that representation's
+    rounding only)."""
+    b = bodies[i]
+    turn_row(kind, rot, i, d, renormalise)
+    b["cs"][0], b["cs"][1] = cos_sin_row(kind, rot, i)
+    b["angle"] += d
+
+
+@njit
+def turn_bodies(bodies, rot: np.ndarray, kind: int, renormalise: bool) -> None:
+    """Turn every body by its ``turn`` (what the position passes turned it by), then zero it."""
+    for i in range(bodies.shape[0]):
+        d = bodies[i]["turn"]
+        if d != 0.0:
+            turn_body(bodies, rot, i, kind, d, renormalise)
+            bodies[i]["turn"] = 0.0
+
+
+@njit
+def place_bodies(bodies, rot: np.ndarray, kind: int) -> None:
+    """Store every body's continuous ``angle`` in ``rot`` (layout ``kind``) and set its
+    (cos, sin) from it: a fresh orientation, after a switch of representation or a reset."""
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        set_angle_row(kind, rot, i, b["angle"])
+        b["cs"][0], b["cs"][1] = cos_sin_row(kind, rot, i)
+
+
+@njit
+def set_angle_row(kind: int, rot: np.ndarray, i: int, angle: float) -> None:
+    """Store ``angle`` (rad) in row i of ``rot`` in the layout of representation ``kind``."""
+    c, s = math.cos(angle), math.sin(angle)
+    if kind == ANGLE:
+        rot[i, 0] = wrap_angle(angle)
+    elif kind == COMPLEX:
+        rot[i, 0] = c
+        rot[i, 1] = s
+    else:
+        rot[i, 0] = c
+        rot[i, 1] = -s
+        rot[i, 2] = s
+        rot[i, 3] = c
 
 
 def angles_of(kind: int, rot: np.ndarray) -> np.ndarray:

@@ -14,327 +14,150 @@
   non-linear Gauss-Seidel position solver). beta is ``settings.baumgarte``.
 
 Before these passes, pairs that bounced before they touched (a speculative contact) are moved
-to where the bounce at the time of impact would have left them (:func:`rebound`).
+to where the bounce at the time of impact would have left them (:func:`rebound`). Joints take a
+position pass after each contact pass (:mod:`sandbox.joints.solve`).
 
 The separation of a point is recomputed from the bodies' current poses: the contact point is
-kept in each body's frame (``la``, ``lb``) and the normal stays fixed in the world, so
-separation = -depth0 + ((c2 + R2 lb) - (c1 + R1 la)) . n. ``slop`` (m) of overlap is allowed,
-so resting contacts stay in touch and keep their cached impulses.
+kept in each body's frame (``local_a``, ``local_b``) and the normal stays fixed in the world,
+so separation = -depth0 + ((c2 + R2 lb) - (c1 + R1 la)) . n. ``slop`` (m) of overlap is allowed,
+so resting contacts stay in touch and keep their cached impulses. Turns are applied to each
+body's (cos, sin) as the passes go and added up in ``turn``; the stored orientation is turned
+by that total at the end (:func:`sandbox.orientation.turn_bodies`).
 """
 
 from __future__ import annotations
 
-import math
-
-import numpy as np
-
-from sandbox import orientation
-from sandbox.contact import (
-    DEPTH,
-    G_NX,
-    G_NY,
-    G_POINT,
-    G_REBOUND,
-    G_STRIDE,
-    I_A,
-    I_B,
-    I_COUNT,
-    LAX,
-    LAY,
-    LBX,
-    LBY,
-    S_II1,
-    S_II2,
-    S_IM1,
-    S_IM2,
-)
 from sandbox.jit import njit
-from sandbox.solvers.impulse import cross, effective_mass
+from sandbox.joints.solve import solve_joint_positions
+from sandbox.math2d import cross, effective_mass, nudge, rotate
+from sandbox.orientation import turn_bodies
 
-METHODS = ("half", "mass_weighted", "impulse")
+HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
+METHODS = ("half", "mass_weighted", "impulse")  # settings.penetration, in code order
 MAX_CORRECTION = 0.2  # m: the largest push of one point in one pass (as Box2D)
 
 
 @njit
-def separation(i, j, ia, ib, nx, ny, la, lb, sep0, com, cs):
-    """Current separation of point j of manifold i (m, < 0 overlapping), and its lever arms."""
-    c1, s1, c2, s2 = cs[ia, 0], cs[ia, 1], cs[ib, 0], cs[ib, 1]
-    r1x = c1 * la[i, j, 0] - s1 * la[i, j, 1]
-    r1y = s1 * la[i, j, 0] + c1 * la[i, j, 1]
-    r2x = c2 * lb[i, j, 0] - s2 * lb[i, j, 1]
-    r2y = s2 * lb[i, j, 0] + c2 * lb[i, j, 1]
-    dx = (com[ib, 0] + r2x) - (com[ia, 0] + r1x)
-    dy = (com[ib, 1] + r2y) - (com[ia, 1] + r1y)
-    return sep0[i, j] + dx * nx + dy * ny, r1x, r1y, r2x, r2y
+def separation(c, p, bodies) -> tuple[float, float, float, float, float]:
+    """Current separation of a contact point (m, < 0 overlapping), and its arms r_a, r_b."""
+    a, b = bodies[c["a"]], bodies[c["b"]]
+    rax, ray = rotate(a["cs"][0], a["cs"][1], p["local_a"][0], p["local_a"][1])
+    rbx, rby = rotate(b["cs"][0], b["cs"][1], p["local_b"][0], p["local_b"][1])
+    dx = (b["com"][0] + rbx) - (a["com"][0] + rax)
+    dy = (b["com"][1] + rby) - (a["com"][1] + ray)
+    return -p["depth"] + dx * c["normal"][0] + dy * c["normal"][1], rax, ray, rbx, rby
 
 
 @njit
-def _turn(cs, dphi, i, d) -> None:
-    """Rotate body i by d radians: (c, s) turned by d, and d added to its total dphi."""
-    if d == 0.0:
-        return
-    dphi[i] += d
-    cd, sd = math.cos(d), math.sin(d)
-    c, s = cs[i, 0], cs[i, 1]
-    cs[i, 0] = c * cd - s * sd
-    cs[i, 1] = s * cd + c * sd
-
-
-@njit
-def push_apart(a, b, normal, count, la, lb, sep0, com, cs, inv_mass, weighted, slop, passes):
-    """Options 1 and 2: translate the two bodies apart by p = deepest overlap - slop.
-
-    Returns the smallest separation seen in the last pass (m).
-    """
+def push_apart(contacts, k: int, bodies, weighted: bool, slop: float) -> float:
+    """Options 1 and 2, one pass: translate each pair apart by p = deepest overlap - slop.
+    Returns the smallest separation seen (m)."""
     worst = 0.0
-    for _ in range(passes):
-        worst = 0.0
-        for i in range(len(a)):
-            ia, ib = a[i], b[i]
-            nx, ny = normal[i, 0], normal[i, 1]
-            deepest = 0.0
-            for j in range(count[i]):
-                sep = separation(i, j, ia, ib, nx, ny, la, lb, sep0, com, cs)[0]
-                worst = min(worst, sep)
-                deepest = max(deepest, -sep - slop)
-            im1, im2 = inv_mass[ia], inv_mass[ib]
-            if deepest <= 0.0 or im1 + im2 == 0.0:
-                continue
-            if weighted:  # option 2: m2 / (m1 + m2) = (1/m1) / (1/m1 + 1/m2)
-                w1 = im1 / (im1 + im2)
-            elif im1 == 0.0 or im2 == 0.0:  # option 1, one body fixed: the other takes all
-                w1 = 0.0 if im1 == 0.0 else 1.0
-            else:  # option 1: half each
-                w1 = 0.5
-            w2 = 1.0 - w1
-            com[ia, 0] -= w1 * deepest * nx
-            com[ia, 1] -= w1 * deepest * ny
-            com[ib, 0] += w2 * deepest * nx
-            com[ib, 1] += w2 * deepest * ny
-    return worst
-
-
-@njit
-def position_impulses(
-    a, b, normal, count, la, lb, sep0, com, cs, dphi, inv_mass, inv_moment,
-    beta, slop, max_correction, passes,
-):  # fmt: skip
-    """Option 3: the impulse equation at positional level (non-linear Gauss-Seidel).
-
-    Returns the smallest separation seen in the last pass (m).
-    """
-    worst = 0.0
-    for _ in range(passes):
-        worst = 0.0
-        for i in range(len(a)):
-            ia, ib = a[i], b[i]
-            nx, ny = normal[i, 0], normal[i, 1]
-            im1, im2, ii1, ii2 = inv_mass[ia], inv_mass[ib], inv_moment[ia], inv_moment[ib]
-            for j in range(count[i]):
-                sep, r1x, r1y, r2x, r2y = separation(i, j, ia, ib, nx, ny, la, lb, sep0, com, cs)
-                worst = min(worst, sep)
-                c = min(max(beta * (sep + slop), -max_correction), 0.0)
-                k = effective_mass(im1, ii1, im2, ii2, r1x, r1y, r2x, r2y, nx, ny)
-                if c == 0.0 or k <= 0.0:
-                    continue
-                lam = -c / k  # slides, "Collision Equation" step 1, on positions
-                px, py = lam * nx, lam * ny
-                com[ia, 0] -= im1 * px
-                com[ia, 1] -= im1 * py
-                _turn(cs, dphi, ia, -ii1 * cross(r1x, r1y, px, py))
-                com[ib, 0] += im2 * px
-                com[ib, 1] += im2 * py
-                _turn(cs, dphi, ib, ii2 * cross(r2x, r2y, px, py))
-    return worst
-
-
-@njit
-def rebound(a, b, normal, distance, com, inv_mass) -> None:
-    """Move each pair ``distance[i]`` closer along the normal, shared by inverse mass (the
-    centre of mass of the pair stays): a bounce computed at the start of the step from a gap
-    g is moved to its time of impact (see :func:`sandbox.solvers.impulse.restitution`)."""
-    for i in range(len(a)):
-        d = distance[i]
-        ia, ib = a[i], b[i]
-        im1, im2 = inv_mass[ia], inv_mass[ib]
-        if d <= 0.0 or im1 + im2 == 0.0:
-            continue
-        w1, w2 = im1 / (im1 + im2) * d, im2 / (im1 + im2) * d
-        com[ia, 0] += w1 * normal[i, 0]
-        com[ia, 1] += w1 * normal[i, 1]
-        com[ib, 0] -= w2 * normal[i, 0]
-        com[ib, 1] -= w2 * normal[i, 1]
-
-
-# --- option 3 and the rebound on contact rows (what the world's step runs) ---------------------
-
-
-@njit
-def turn_small(c, s, d):
-    """(c, s) turned by about d radians, for the small turns within the position passes: by
-    atan(d), ((c, s) + d (-s, c)) / sqrt(1 + d^2), which is d to within d^3 / 3, without a
-    cosine and a sine. The passes add up the exact d of every turn, and the orientation is
-    turned by that total afterwards, so the step's result keeps no error."""
-    scale = 1.0 / math.sqrt(1.0 + d * d)
-    return (c - s * d) * scale, (s + c * d) * scale
-
-
-@njit
-def position_rows(ints, geoms, solver, k, com, cs, dphi, beta, slop, max_correction, passes):
-    """:func:`position_impulses` for contact rows (``sandbox.contact``), visiting the manifolds
-    in the velocity sweeps' order (``sandbox.solvers.iterative.visit``). Returns the smallest
-    separation seen in the last pass (m)."""
-    worst = 0.0
-    half = (k + 1) // 2
-    for _ in range(passes):
-        worst = 0.0
-        moved = False
-        for q in range(k):
-            i = (q >> 1) + (q & 1) * half
-            ia, ib = ints[i, I_A], ints[i, I_B]
-            nx, ny = geoms[i, G_NX], geoms[i, G_NY]
-            for j in range(ints[i, I_COUNT]):
-                g = G_POINT + G_STRIDE * j
-                c1, s1, c2, s2 = cs[ia, 0], cs[ia, 1], cs[ib, 0], cs[ib, 1]
-                lax, lay = geoms[i, g + LAX], geoms[i, g + LAY]
-                lbx, lby = geoms[i, g + LBX], geoms[i, g + LBY]
-                r1x, r1y = c1 * lax - s1 * lay, s1 * lax + c1 * lay
-                r2x, r2y = c2 * lbx - s2 * lby, s2 * lbx + c2 * lby
-                dx = (com[ib, 0] + r2x) - (com[ia, 0] + r1x)
-                dy = (com[ib, 1] + r2y) - (com[ia, 1] + r1y)
-                sep = -geoms[i, g + DEPTH] + dx * nx + dy * ny
-                worst = min(worst, sep)
-                c = min(max(beta * (sep + slop), -max_correction), 0.0)
-                if c == 0.0:
-                    continue  # within the slop: nothing to push
-                im1, ii1 = solver[i, S_IM1], solver[i, S_II1]
-                im2, ii2 = solver[i, S_IM2], solver[i, S_II2]
-                rn1, rn2 = cross(r1x, r1y, nx, ny), cross(r2x, r2y, nx, ny)
-                kn = im1 + im2 + ii1 * rn1 * rn1 + ii2 * rn2 * rn2
-                if kn <= 0.0:
-                    continue
-                lam = -c / kn  # slides, "Collision Equation" step 1, on positions
-                moved = True
-                com[ia, 0] -= im1 * lam * nx
-                com[ia, 1] -= im1 * lam * ny
-                com[ib, 0] += im2 * lam * nx
-                com[ib, 1] += im2 * lam * ny
-                d1, d2 = -ii1 * rn1 * lam, ii2 * rn2 * lam
-                if d1 != 0.0:
-                    dphi[ia] += d1
-                    cs[ia, 0], cs[ia, 1] = turn_small(c1, s1, d1)
-                if d2 != 0.0:
-                    dphi[ib] += d2
-                    cs[ib, 0], cs[ib, 1] = turn_small(c2, s2, d2)
-        if not moved:
-            break  # nothing moved: another pass would see the very same separations
-    return worst
-
-
-@njit
-def rebound_rows(ints, geoms, k, com, inv_mass) -> None:
-    """:func:`rebound` for contact rows (distance in ``G_REBOUND``)."""
     for i in range(k):
-        d = geoms[i, G_REBOUND]
-        ia, ib = ints[i, I_A], ints[i, I_B]
-        im1, im2 = inv_mass[ia], inv_mass[ib]
-        if d <= 0.0 or im1 + im2 == 0.0:
+        c = contacts[i]
+        deepest = 0.0
+        for j in range(c["count"]):
+            sep = separation(c, c["points"][j], bodies)[0]
+            worst = min(worst, sep)
+            deepest = max(deepest, -sep - slop)
+        im_a, im_b = bodies[c["a"]]["inv_mass"], bodies[c["b"]]["inv_mass"]
+        if deepest <= 0.0 or im_a + im_b == 0.0:
             continue
-        w1, w2 = im1 / (im1 + im2) * d, im2 / (im1 + im2) * d
-        com[ia, 0] += w1 * geoms[i, G_NX]
-        com[ia, 1] += w1 * geoms[i, G_NY]
-        com[ib, 0] -= w2 * geoms[i, G_NX]
-        com[ib, 1] -= w2 * geoms[i, G_NY]
-
-
-@njit
-def position_phase(
-    ints, geoms, solver, k, com, rot, cs, dphi, inv_mass, orientation_kind, renormalise,
-    beta, slop, passes,
-) -> float:  # fmt: skip
-    """The position phase on contact rows without joints, option 3: the rebound, ``passes``
-    passes of :func:`position_rows`, then the orientations turned by what the passes turned
-    (``dphi`` is scratch, one per body). Returns the smallest separation left (m)."""
-    rebound_rows(ints, geoms, k, com, inv_mass)
-    if k == 0 or passes <= 0:
-        return 0.0
-    dphi[:] = 0.0
-    worst = position_rows(ints, geoms, solver, k, com, cs, dphi, beta, slop, MAX_CORRECTION, passes)
-    orientation.integrate_rotations(orientation_kind, rot, dphi, renormalise)
-    orientation.cos_sin(orientation_kind, rot, cs)
+        if weighted:  # option 2: m2 / (m1 + m2) = (1/m1) / (1/m1 + 1/m2)
+            w_a = im_a / (im_a + im_b)
+        elif im_a == 0.0 or im_b == 0.0:  # option 1, one body fixed: the other takes all
+            w_a = 0.0 if im_a == 0.0 else 1.0
+        else:  # option 1: half each
+            w_a = 0.5
+        nx, ny = c["normal"][0], c["normal"][1]
+        nudge(bodies[c["a"]], -w_a * deepest * nx, -w_a * deepest * ny, 0.0)
+        nudge(bodies[c["b"]], (1.0 - w_a) * deepest * nx, (1.0 - w_a) * deepest * ny, 0.0)
     return worst
 
 
-def constraints_of_rows(cache, s: int, k: int):
-    """The position data of set ``s`` of contact rows as a
-    :class:`~sandbox.solvers.impulse.Constraints` (``la``, ``lb``, ``sep0``, ``rebound``), for
-    the options and the joint loop that work on those."""
-    from sandbox.solvers.impulse import Constraints
-
-    geoms = cache.geoms[s][:k]
-    cons = Constraints(k)
-    for j in range(2):
-        g = G_POINT + G_STRIDE * j
-        cons.la[:, j] = geoms[:, [g + LAX, g + LAY]]
-        cons.lb[:, j] = geoms[:, [g + LBX, g + LBY]]
-        cons.sep0[:, j] = -geoms[:, g + DEPTH]
-    cons.rebound[:] = geoms[:, G_REBOUND]
-    return cons
-
-
-def correct(world, manifolds, cons, passes: int) -> float:
-    """Run ``passes`` passes of ``world.settings.penetration`` over the contacts (in place on
-    ``world.com`` and the orientations). Returns the smallest separation left (m)."""
-    s = world.settings
-    if manifolds is None or len(manifolds) == 0 or passes <= 0:
-        return 0.0
-    m = manifolds
-    if s.penetration == "impulse":
-        dphi = np.zeros(len(world.kind))
-        worst = position_impulses(
-            m.a, m.b, m.normal, m.count, cons.la, cons.lb, cons.sep0, world.com, world.cs,
-            dphi, world.inv_mass, world.inv_moment, float(s.baumgarte), float(s.slop),
-            MAX_CORRECTION, int(passes),
-        )  # fmt: skip
-        # the orientations proper follow the angle changes; cs is recomputed from them
-        orientation.integrate_rotations(world.orientation_kind, world.rot, dphi, s.renormalise)
-        orientation.cos_sin(world.orientation_kind, world.rot, world.cs)
-        return float(worst)
-    return float(
-        push_apart(
-            m.a,
-            m.b,
-            m.normal,
-            m.count,
-            cons.la,
-            cons.lb,
-            cons.sep0,
-            world.com,
-            world.cs,
-            world.inv_mass,
-            s.penetration == "mass_weighted",
-            float(s.slop),
-            int(passes),
-        )  # fmt: skip
-    )
+@njit
+def position_impulses(contacts, k: int, bodies, beta: float, slop: float):
+    """Option 3, one pass (non-linear Gauss-Seidel), in the velocity sweeps' order
+    (:func:`sandbox.solvers.iterative.visit`). Returns (smallest separation seen (m), whether
+    anything moved)."""
+    worst = 0.0
+    moved = False
+    half = (k + 1) // 2
+    for q in range(k):
+        c = contacts[(q >> 1) + (q & 1) * half]
+        a, b = bodies[c["a"]], bodies[c["b"]]
+        nx, ny = c["normal"][0], c["normal"][1]
+        for j in range(c["count"]):
+            sep, rax, ray, rbx, rby = separation(c, c["points"][j], bodies)
+            worst = min(worst, sep)
+            error = min(max(beta * (sep + slop), -MAX_CORRECTION), 0.0)
+            if error == 0.0:
+                continue  # within the slop: nothing to push
+            rn_a, rn_b = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
+            k_n = effective_mass(
+                a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"], rn_a, rn_b
+            )
+            if k_n <= 0.0:
+                continue
+            lam = -error / k_n  # slides, "Collision Equation" step 1, on positions
+            moved = True
+            nudge(
+                a,
+                -a["inv_mass"] * lam * nx,
+                -a["inv_mass"] * lam * ny,
+                -a["inv_moment"] * rn_a * lam,
+            )
+            nudge(
+                b, b["inv_mass"] * lam * nx, b["inv_mass"] * lam * ny, b["inv_moment"] * rn_b * lam
+            )
+    return worst, moved
 
 
-def solve_positions(world, manifolds, cons, passes: int) -> None:
-    """The position phase every solver shares: ``passes`` passes of the penetration fix,
-    interleaved with the joints' ``solve_position`` when there are joints. Nothing at all
-    when ``settings.position_correction`` is off."""
-    if not world.settings.position_correction:
-        return
-    m = manifolds
-    if len(m) and np.any(cons.rebound > 0.0):
-        rebound(m.a, m.b, m.normal, cons.rebound, world.com, world.inv_mass)
-    if not world.joints:
-        correct(world, manifolds, cons, passes)
-        return
-    for _ in range(passes):
-        worst = correct(world, manifolds, cons, 1)
-        joint_error = 0.0
-        for joint in world.joints:
-            joint_error = max(joint_error, float(joint.solve_position(world)))
-        if worst >= -3.0 * world.settings.slop and joint_error <= world.settings.slop:
+@njit
+def rebound(contacts, k: int, bodies) -> None:
+    """Move each pair ``rebound`` closer along the normal, shared by inverse mass (the centre
+    of mass of the pair stays): a bounce computed at the start of the step from a gap g is
+    moved to its time of impact (see :func:`sandbox.solvers.common.restitution`)."""
+    for i in range(k):
+        c = contacts[i]
+        d = c["rebound"]
+        a, b = bodies[c["a"]], bodies[c["b"]]
+        im_a, im_b = a["inv_mass"], b["inv_mass"]
+        if d <= 0.0 or im_a + im_b == 0.0:
+            continue
+        w_a, w_b = im_a / (im_a + im_b) * d, im_b / (im_a + im_b) * d
+        nudge(a, w_a * c["normal"][0], w_a * c["normal"][1], 0.0)
+        nudge(b, -w_b * c["normal"][0], -w_b * c["normal"][1], 0.0)
+
+
+@njit
+def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
+    """The position stage every rigid solver shares: the rebound, then up to
+    ``position_iterations`` passes of the penetration fix, each followed by the joints'
+    position pass; then each body's orientation turned by what the passes turned. Nothing at
+    all when ``settings.position_correction`` is off. Returns the smallest separation the last
+    contact pass saw (m, < 0 overlapping)."""
+    ctx = context[0]
+    worst = 0.0
+    if not ctx["position_correction"]:
+        return worst
+    rebound(contacts, k, bodies)
+    if k == 0 and joints.shape[0] == 0:
+        return worst
+    for i in range(bodies.shape[0]):
+        bodies[i]["turn"] = 0.0
+    slop, method = ctx["slop"], ctx["penetration"]
+    for _ in range(ctx["position_iterations"]):
+        if method == IMPULSE:
+            worst, moved = position_impulses(contacts, k, bodies, ctx["baumgarte"], slop)
+        else:
+            worst, moved = push_apart(contacts, k, bodies, method == MASS_WEIGHTED, slop), True
+        if joints.shape[0] == 0:
+            if not moved:
+                break  # nothing moved: another pass would see the very same separations
+            continue
+        joint_error = solve_joint_positions(joints, bodies)
+        if worst >= -3.0 * slop and joint_error <= slop:
             break
+    turn_bodies(bodies, rot, ctx["orientation"], ctx["renormalise"])
+    return worst

@@ -58,3 +58,32 @@ def apex(u, g: float) -> tuple[float, float]:
     ux, uy = float(u[0]), float(u[1])
     t = uy / g
     return ux * t, uy * uy / (2.0 * g)
+
+
+def advance_analytic(world, dt: float) -> None:
+    """A world under ``integrator: analytic``: every body on its closed-form path from where it
+    was when the path started, p(t) = s + u t + a t^2 / 2, theta(t) = theta0 + omega0 t +
+    alpha t^2 / 2, a = g + F / m (slides). Bodies do not collide; joints and forces are refused."""
+    from sandbox.orientation import NAMES, place_bodies
+    from sandbox.records import DYNAMIC, STATIC
+
+    w = world
+    if w.joints or w.forces:
+        raise ValueError("settings.integrator: analytic motion cannot have joints or forces")
+    if w._analytic_ref is None:
+        dyn = (w.kind == DYNAMIC)[:, None]
+        force = w.force + w.const_force
+        a = np.where(dyn, w.gravity + force * w.inv_mass[:, None], 0.0)
+        alpha = (w.torque + w.const_torque) * w.inv_moment
+        w._analytic_ref = (w.time, w.com.copy(), w.vel.copy(), a, w.angles(), w.omega.copy(), alpha)
+    t0, s0, u, a, th0, w0, alpha = w._analytic_ref
+    t = w.time + dt - t0
+    moving = w.kind != STATIC
+    w.com[moving] = (s0 + u * t + 0.5 * a * t * t)[moving]
+    w.vel[moving] = (u + a * t)[moving]
+    w.omega[moving] = (w0 + alpha * t)[moving]
+    w.state["angle"] = np.where(moving, th0 + w0 * t + 0.5 * alpha * t * t, th0)
+    place_bodies(w.state, w.rot, NAMES[w.settings.orientation])
+    w.force[:] = 0.0
+    w.torque[:] = 0.0
+    w.context[0]["contact_count"][:] = 0

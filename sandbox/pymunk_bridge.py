@@ -31,9 +31,10 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+import numpy as np
 import pymunk
 
-from sandbox.buoyancy import circle_submerged, clip_below, polygon_area_centroid
+from sandbox.buoyancy import circle_submerged, polygon_submerged  # also for the tests
 from sandbox.geometry import polygon_problem
 from sandbox.settings import Settings
 
@@ -80,8 +81,8 @@ def shape_submerged(shape: pymunk.Shape, surface_y: float) -> tuple[float, float
     if isinstance(shape, pymunk.Circle):
         c = body.local_to_world(shape.offset)
         return circle_submerged(c.x, c.y, shape.radius, surface_y)
-    world = [tuple(body.local_to_world(v)) for v in shape.get_vertices()]
-    return polygon_area_centroid(clip_below(world, surface_y))
+    world = np.array([tuple(body.local_to_world(v)) for v in shape.get_vertices()], dtype=float)
+    return polygon_submerged(world, surface_y)
 
 
 def buoyancy_force(

@@ -16,24 +16,26 @@ list of ``fluids``: the surface heights (m) of the world's buoyancy generators.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import numpy as np
 
+from sandbox.energy import WorkMeter, energy_terms
+from sandbox.outlines import (  # noqa: F401 (re-exported: lessons import them from here)
+    CircleOutline,
+    Outline,
+    OutlineArrays,
+    bounds,
+    place,
+    shape_outline,
+    zigzag,
+)
+from sandbox.overlays import Overlays, parse_layers
+
 BODY_TYPES = ("dynamic", "static", "kinematic")
 JOINT_KINDS = ("pin", "pivot", "spring")  # drawn as: a line, a dot, a zig-zag
-
-
-class CircleOutline(NamedTuple):
-    """A circle in a body's origin frame: ``center`` (2,) in metres, ``radius`` in metres."""
-
-    center: np.ndarray
-    radius: float
-
-
-Outline = CircleOutline | np.ndarray
 
 
 class JointOutline(NamedTuple):
@@ -61,17 +63,6 @@ def joint_outline(joint: Any, index: Mapping[int, int]) -> JointOutline:
         np.asarray(joint.anchor_a, dtype=float).reshape(2).copy(),
         np.asarray(joint.anchor_b, dtype=float).reshape(2).copy(),
     )
-
-
-def shape_outline(shape: Any) -> Outline:
-    """The outline of one shape of the engine (``.kind`` "circle" or "polygon")."""
-    if shape.kind == "circle":
-        center = np.asarray(getattr(shape, "offset", (0.0, 0.0)), dtype=float).reshape(2).copy()
-        return CircleOutline(center, float(shape.radius))
-    if shape.kind == "polygon":
-        vertices = np.array(shape.vertices, dtype=float).reshape(-1, 2)
-        return vertices
-    raise ValueError(f"cannot draw a shape of kind {shape.kind!r}")
 
 
 def _check_outline(outline: Outline, where: str) -> Outline:
@@ -114,6 +105,9 @@ class Recording:
     ``(J, 2, 2)`` array of their world anchor points ``[[xa, ya], [xb, yb]]`` at frame ``k``
     (computed from the poses when not given). ``fluids`` are water surface heights (m): the
     water fills everything below each.
+
+    ``overlays`` (:class:`~sandbox.overlays.Overlays`) hold what the debug-drawing layers need
+    per frame (contacts, velocities, forces), recorded only for the layers asked for.
     """
 
     names: list[str]
@@ -125,6 +119,7 @@ class Recording:
     joints: list[JointOutline] = field(default_factory=list)
     joint_frames: list[np.ndarray] = field(default_factory=list)
     fluids: list[float] = field(default_factory=list)
+    overlays: Overlays = field(default_factory=Overlays)
 
     def __post_init__(self) -> None:
         n = len(self.names)
@@ -145,6 +140,7 @@ class Recording:
             self.joint_frames = [self.joint_points(p) for p in self.frames]
         if len(self.joint_frames) != len(self.frames):
             raise ValueError("joint_frames must have one entry per frame")
+        self.overlays.check(len(self.frames))
 
     @property
     def n_bodies(self) -> int:
@@ -155,9 +151,16 @@ class Recording:
         return len(self.frames)
 
     @classmethod
-    def from_world(cls, world: Any) -> Recording:
-        """The geometry of ``world``'s bodies (names, types, outlines), with no frame yet."""
+    def from_world(cls, world: Any, draw: str | Iterable[str] | None = ()) -> Recording:
+        """The geometry of ``world``'s bodies (names, types, outlines), with no frame yet.
+
+        ``draw``: the debug-drawing layers whose data :meth:`capture` will record.
+        """
         bodies = list(world.bodies)
+        if hasattr(world, "local_com"):
+            overlays = Overlays.for_world(world, draw)
+        else:  # a stand-in without the engine's arrays: only layers drawn from the geometry
+            overlays = Overlays(layers=parse_layers(draw))
         index = {id(b): i for i, b in enumerate(bodies)}
         return cls(
             names=[str(b.name) for b in bodies],
@@ -169,6 +172,7 @@ class Recording:
                 for f in getattr(world, "forces", ())
                 if getattr(f, "type", None) == "buoyancy"
             ],
+            overlays=overlays,
         )
 
     def joint_points(self, poses: np.ndarray) -> np.ndarray:
@@ -183,12 +187,18 @@ class Recording:
         return place(local, body, np.asarray(poses, dtype=float)).reshape(-1, 2, 2)
 
     def add_frame(
-        self, poses: np.ndarray, time: float, joints: np.ndarray | None = None, **values: float
+        self,
+        poses: np.ndarray,
+        time: float,
+        joints: np.ndarray | None = None,
+        overlay: Mapping[str, Any] | None = None,
+        **values: float,
     ) -> None:
         """Append one frame: ``poses`` (n, 3) ``[x, y, angle]``, ``time`` (s), series values.
 
         ``joints``: the joints' world anchor points ``(J, 2, 2)`` (m); default: placed from
-        ``poses``.
+        ``poses``. ``overlay``: the frame's data for the recorded layers (see
+        :meth:`sandbox.overlays.Overlays.add`, e.g. ``{"velocities": v}``).
         """
         poses = np.array(poses, dtype=float)
         if poses.shape != (self.n_bodies, 3):
@@ -200,6 +210,8 @@ class Recording:
             raise ValueError(
                 f"a frame's joints must be ({len(self.joints)}, 2, 2), got {joints.shape}"
             )
+        if self.overlays.recorded:
+            self.overlays.add(self.n_bodies, overlay or {})
         k = len(self.frames)
         self.frames.append(poses)
         self.joint_frames.append(joints)
@@ -217,7 +229,8 @@ class Recording:
         poses = np.array(
             [(b.position[0], b.position[1], b.angle) for b in world.bodies], dtype=float
         ).reshape(-1, 3)
-        self.add_frame(poses, world.time, self.joint_points(poses), **values)
+        overlay = self.overlays.frame_data(world) if self.overlays.recorded else None
+        self.add_frame(poses, world.time, self.joint_points(poses), overlay, **values)
 
     def poses(self) -> np.ndarray:
         """All frames stacked: ``(F, n, 3)``."""
@@ -232,143 +245,64 @@ class Recording:
         return np.stack(self.joint_frames)
 
 
+class Recorder:
+    """Records a world while it runs: call :meth:`step_done` after each ``world.step()``.
+
+    Captures the state when made, then every ``every`` steps: poses, ``series`` values, the data
+    of the layers ``draw`` and, with ``energy``, the energy by part and the work done
+    (:mod:`sandbox.energy`, measured over every step) as the series ``ENERGY_SERIES``.
+    """
+
+    def __init__(
+        self,
+        world: Any,
+        every: int = 1,
+        series: Mapping[str, Callable[[Any], float]] | None = None,
+        draw: str | Iterable[str] | None = (),
+        energy: bool = False,
+    ) -> None:
+        if every < 1:
+            raise ValueError(f"need every >= 1, got every={every}")
+        self.world, self.every, self.steps = world, int(every), 0
+        self.series = dict(series or {})
+        self.meter = WorkMeter(world) if energy else None
+        self.recording = Recording.from_world(world, draw)
+        self.capture()
+
+    def capture(self) -> None:
+        values = {name: fn(self.world) for name, fn in self.series.items()}
+        if self.meter is not None:
+            values.update(energy_terms(self.world), **{"energy.work": self.meter.work})
+        self.recording.capture(self.world, **values)
+
+    def step_done(self, world: Any = None) -> None:
+        if self.meter is not None:
+            self.meter.after()
+        self.steps += 1
+        if self.steps % self.every == 0:
+            self.capture()
+
+
 def record(
     world: Any,
     steps: int,
     every: int = 1,
     series: Mapping[str, Callable[[Any], float]] | None = None,
+    draw: str | Iterable[str] | None = (),
+    energy: bool = False,
 ) -> Recording:
     """Step ``world`` ``steps`` times, capturing the initial state and then every ``every`` steps.
 
     ``series`` maps a name to a function ``world -> float`` evaluated at each captured frame,
-    e.g. ``{"energy": lambda w: w.kinetic_energy() + w.potential_energy()}``.
+    e.g. ``{"energy": lambda w: w.kinetic_energy() + w.potential_energy()}``. ``draw`` names the
+    debug-drawing layers to record data for (``"contacts,impulses"`` or a list; see
+    :mod:`sandbox.overlays`); ``energy=True`` records the energies the ``"energy-bars"`` panel
+    draws. Only what is asked for is kept.
     """
-    if steps < 0 or every < 1:
-        raise ValueError(f"need steps >= 0 and every >= 1, got steps={steps}, every={every}")
-    series = dict(series or {})
-    rec = Recording.from_world(world)
-
-    def capture() -> None:
-        rec.capture(world, **{name: fn(world) for name, fn in series.items()})
-
-    capture()
-    for k in range(1, steps + 1):
+    if steps < 0:
+        raise ValueError(f"need steps >= 0, got steps={steps}")
+    recorder = Recorder(world, every, series, draw, energy)
+    for _ in range(steps):
         world.step()
-        if k % every == 0:
-            capture()
-    return rec
-
-
-@dataclass
-class OutlineArrays:
-    """Every shape of a recording as a polygon with the same vertex count, in array form.
-
-    A circle becomes a regular ``circle_sides``-gon; shorter polygons are padded by repeating
-    their last vertex, so all shapes are placed in the world with one numpy expression.
-    """
-
-    body: np.ndarray  # (P,) int64: the body owning each shape
-    local: np.ndarray  # (P, V, 2) vertices in the body's origin frame
-    marker: np.ndarray  # (P, 3, 2) orientation marker: centre, rim / first-edge midpoint, NaN
-    static: np.ndarray  # (P,) bool: the owning body is static
-
-    @classmethod
-    def of(cls, rec: Recording, circle_sides: int = 20) -> OutlineArrays:
-        angles = 2.0 * math.pi * np.arange(circle_sides) / circle_sides
-        unit = np.stack([np.cos(angles), np.sin(angles)], axis=1)
-        gap = (math.nan, math.nan)  # breaks the marker polyline between shapes
-        body, polys, markers = [], [], []
-        for i, outlines in enumerate(rec.outlines):
-            for outline in outlines:
-                if isinstance(outline, CircleOutline):
-                    c, r = outline.center, outline.radius
-                    polys.append(c + r * unit)
-                    markers.append((c, c + (r, 0.0), gap))
-                else:
-                    polys.append(outline)
-                    markers.append((outline.mean(axis=0), 0.5 * (outline[0] + outline[1]), gap))
-                body.append(i)
-        width = max([circle_sides] + [len(p) for p in polys])
-        local = np.zeros((len(polys), width, 2))
-        for j, p in enumerate(polys):
-            local[j, : len(p)] = p
-            local[j, len(p) :] = p[-1]
-        return cls(
-            body=np.array(body, dtype=np.int64),
-            local=local,
-            marker=np.array(markers, dtype=float).reshape(-1, 3, 2),
-            static=np.array([rec.types[b] == "static" for b in body], dtype=bool),
-        )
-
-
-def place(local: np.ndarray, body: np.ndarray, poses: np.ndarray) -> np.ndarray:
-    """World coordinates of body-frame points ``local`` (P, V, 2): x = p + R(angle) q.
-
-    ``body`` (P,) picks each row's pose from ``poses`` (..., n, 3); leading frame axes broadcast,
-    so one call places every shape of one frame, or of a block of frames.
-    """
-    pose = poses[..., body, :]
-    c = np.cos(pose[..., 2])[..., None]
-    s = np.sin(pose[..., 2])[..., None]
-    qx, qy = local[..., 0], local[..., 1]
-    out = np.empty(pose.shape[:-1] + local.shape[-2:])
-    out[..., 0] = c * qx - s * qy + pose[..., 0, None]
-    out[..., 1] = s * qx + c * qy + pose[..., 1, None]
-    return out
-
-
-# a spring's zig-zag: straight leads at both ends, then ZIGZAG_PEAKS alternating peaks between
-_LEAD = 0.15
-ZIGZAG_PEAKS = 10
-_ZIG_T = np.concatenate(
-    [[0.0, _LEAD], _LEAD + (1 - 2 * _LEAD) * (np.arange(ZIGZAG_PEAKS) + 0.5) / ZIGZAG_PEAKS]
-    + [[1 - _LEAD, 1.0]]
-)
-_ZIG_SIDE = np.concatenate([[0.0, 0.0], (-1.0) ** np.arange(ZIGZAG_PEAKS), [0.0, 0.0]])
-
-
-def zigzag(ends: np.ndarray, half_width: float) -> np.ndarray:
-    """Zig-zag polylines ``(S, Z, 2)`` between the two points of each row of ``ends`` (S, 2, 2).
-
-    The peaks stand ``half_width`` (m) off the line from end 0 to end 1; a spring of length 0
-    is drawn as a point.
-    """
-    pa, d = ends[:, 0], ends[:, 1] - ends[:, 0]
-    length = np.hypot(d[:, 0], d[:, 1])
-    scale = np.divide(half_width, length, out=np.zeros_like(length), where=length > 0)
-    normal = np.stack([-d[:, 1], d[:, 0]], axis=1) * scale[:, None]  # |normal| = half_width
-    return (
-        pa[:, None, :]
-        + _ZIG_T[None, :, None] * d[:, None, :]
-        + _ZIG_SIDE[None, :, None] * normal[:, None, :]
-    )
-
-
-def bounds(
-    shapes: OutlineArrays, poses: np.ndarray, points: np.ndarray | None = None
-) -> np.ndarray | None:
-    """``[xmin, xmax, ymin, ymax]`` of all shapes in all frames ``poses`` (F, n, 3), in metres,
-    and of the extra ``points`` (..., 2) (e.g. joint anchors).
-
-    Non-finite coordinates are ignored; None when there is nothing finite to bound.
-    """
-    lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
-    if points is not None and points.size:
-        pts = points.reshape(-1, 2)
-        pts = pts[np.isfinite(pts).all(axis=1)]
-        if len(pts):
-            lo, hi = pts.min(axis=0), pts.max(axis=0)
-    chunk = max(1, 2_000_000 // max(1, shapes.local.size))  # frames per block, bounded memory
-    for k in range(0, len(poses), chunk):
-        block = poses[k : k + chunk]
-        if len(shapes.body):
-            pts = place(shapes.local, shapes.body, block).reshape(-1, 2)
-        else:
-            pts = block[..., :2].reshape(-1, 2)
-        pts = pts[np.isfinite(pts).all(axis=1)]
-        if len(pts):
-            lo = np.minimum(lo, pts.min(axis=0))
-            hi = np.maximum(hi, pts.max(axis=0))
-    if not np.isfinite(lo).all():
-        return None
-    return np.array([lo[0], hi[0], lo[1], hi[1]])
+        recorder.step_done()
+    return recorder.recording

@@ -26,6 +26,7 @@ from sandbox.frames import (
     FrameRenderer,
     as_runs,
 )
+from sandbox.overlays import LAYERS, Layers
 from sandbox.recording import (
     CircleOutline,
     Recording,
@@ -38,6 +39,8 @@ __all__ = [
     "STATIC_FACE",
     "CircleOutline",
     "FrameRenderer",
+    "LAYERS",
+    "Layers",
     "Recording",
     "record",
     "render_frames",
@@ -63,28 +66,37 @@ def render_frames(
             yield renderer.frame(k)
 
 
-def _source_runs(source: Any) -> Recording | list[Recording]:
-    """A Recording, a list of them, or a world (its current state as a one-frame Recording)."""
+def _source_runs(source: Any, draw: Any = None) -> Recording | list[Recording]:
+    """A Recording, a list of them, or a world (its current state as a one-frame Recording,
+    with the data of the layers ``draw``)."""
     if isinstance(source, Recording):
         return source
     if isinstance(source, (list, tuple)):
         return as_runs(source)
     if hasattr(source, "bodies"):
-        rec = Recording.from_world(source)
+        rec = Recording.from_world(source, Layers.of(draw).names)
         rec.capture(source)
         return rec
     raise TypeError(f"cannot render a {type(source).__name__}")
 
 
 def render_png(
-    source: Any, path: str | Path, frame: int = -1, size_px: int = 480, **options: Any
+    source: Any,
+    path: str | Path,
+    frame: int = -1,
+    size_px: int = 480,
+    draw: str | Sequence[str] | Layers | None = None,
+    **options: Any,
 ) -> Path:
     """Write frame ``frame`` of ``source`` (Recording(s) or a world's current state) as a PNG.
 
-    Options as :class:`FrameRenderer` (labels, colors, panel, trail, view, axes, ...). The file
-    is written whole or not at all. Returns the path.
+    ``draw``: debug-drawing layers over the bodies (``"contacts,normals,impulses"``; the
+    recording must hold their data: ``record(..., draw=...)``). Options as
+    :class:`FrameRenderer` (labels, colors, panel, trail, view, axes, ...). The file is
+    written whole or not at all. Returns the path.
     """
-    with FrameRenderer(_source_runs(source), size_px=size_px, **options) as renderer:
+    runs = _source_runs(source, draw)
+    with FrameRenderer(runs, size_px=size_px, draw=draw, **options) as renderer:
         rgb = renderer.frame(frame)
     path = Path(path)
     with atomic_write(path, "wb") as f:
@@ -102,12 +114,16 @@ def render_gif(
     panel: str | Sequence[str] | None = None,
     trail: bool | int = False,
     stride: int = 1,
+    draw: str | Sequence[str] | Layers | None = None,
     **options: Any,
 ) -> Path:
     """Write ``runs`` (a Recording or a list, overlaid one colour per run) as a looping GIF.
 
     Every ``stride``-th frame is drawn and shown for ``1/fps`` s. ``labels`` name the runs in a
-    legend; ``panel`` plots series beside the scene; more options as :class:`FrameRenderer`.
+    legend; ``panel`` plots series beside the scene (``"energy-bars"``: the energy bars, from
+    ``record(..., energy=True)``); ``draw`` names debug-drawing layers (``"contacts,impulses"``,
+    recorded with ``record(..., draw=...)``) drawn over the bodies with a key below; more
+    options as :class:`FrameRenderer`.
     All frames share one palette (built from the first frame and the run colours, no
     dithering); a frame identical to the one before is merged into it (longer duration). The
     file is written whole or not at all. Returns the path.
@@ -116,14 +132,24 @@ def render_gif(
         raise ValueError(f"need fps > 0 and stride >= 1, got fps={fps}, stride={stride}")
     path = Path(path)
     renderer = FrameRenderer(
-        runs, size_px=size_px, labels=labels, colors=colors, panel=panel, trail=trail, **options
+        runs,
+        size_px=size_px,
+        labels=labels,
+        colors=colors,
+        panel=panel,
+        trail=trail,
+        draw=draw,
+        **options,
     )
     with renderer:
         ks = range(0, renderer.n_frames, stride)
         show = len(ks) > PROGRESS_FRAMES and sys.stderr.isatty()
         bar = tqdm(total=len(ks), desc=path.name, unit="frame", leave=False, disable=not show)
         first = renderer.frame(0)
-        palette = _palette(first, renderer.palette_colors())
+        # the palette is built from the scene and panel, not the key: a frame that draws
+        # nothing more than a plain one gets the same pixels
+        scene = first[: first.shape[0] - renderer.key_px]
+        palette = _palette(scene, renderer.palette_colors())
 
         def quantized(indices: Sequence[int]) -> Iterator[Image.Image]:
             for k in indices:

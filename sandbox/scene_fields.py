@@ -12,7 +12,14 @@ import numbers
 from typing import Any
 
 IGNORED_KEYS = ("description", "comment")  # and every key starting with "_"
-_REQUIRED = object()
+
+
+class _Required:
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+_REQUIRED: Any = _Required()  # the default of a field that must be given
 
 
 class SceneError(ValueError):
@@ -52,8 +59,9 @@ def _show(value: Any) -> str:
             return "Infinity" if value > 0 else "-Infinity"
         return repr(value)
     if isinstance(value, int):
-        text = str(value)
-        return text if len(text) <= 20 else "an integer too large"
+        if value.bit_length() > 64:  # str() of a 5000-digit integer raises ValueError
+            return "an integer too large"
+        return str(value)
     if isinstance(value, list | tuple):
         return f"a list of {len(value)} item{'s' if len(value) != 1 else ''}" if value else "[]"
     if isinstance(value, dict):
@@ -66,12 +74,31 @@ def _is_number(value: Any) -> bool:
 
 
 def _bound(x: float) -> str:
-    return str(int(x)) if float(x).is_integer() else repr(x)
+    """A bound as people write it: ``1``, ``0.005``, ``1e+09``, ``1e-06``."""
+    x = float(x)
+    if x.is_integer() and abs(x) < 1e5:
+        return str(int(x))
+    if x != 0.0 and (abs(x) >= 1e5 or abs(x) < 1e-3):
+        return f"{x:g}"
+    return repr(x)
 
 
-def _number(value: Any, path: str, *, gt: float | None = None, ge: float | None = None,
-            le: float | None = None) -> float:  # fmt: skip
-    """A finite int or float (never a bool) within the given bounds, as a float."""
+def _number(
+    value: Any,
+    path: str,
+    *,
+    gt: float | None = None,
+    ge: float | None = None,
+    le: float | None = None,
+    lo: float | None = None,
+    hi: float | None = None,
+    unit: str = "",
+) -> float:
+    """A finite int or float (never a bool) within the given bounds, as a float.
+
+    ``gt`` / ``ge`` / ``le`` are the sign rule (a length is > 0); ``[lo, hi]`` (in ``unit``) the
+    physical range, checked after it with its own message.
+    """
     if gt is not None:
         expected = f"a number > {_bound(gt)}"
     elif ge is not None and le is not None:
@@ -94,6 +121,12 @@ def _number(value: Any, path: str, *, gt: float | None = None, ge: float | None 
         or (le is not None and not x <= le)
     ):
         raise SceneError(path, f"expected {expected}, got {_show(value)}")
+    if (lo is not None and x < lo) or (hi is not None and x > hi):
+        where = f"[{_bound(lo)}, {_bound(hi)}]" if lo is not None and hi is not None else ""
+        if not where:
+            where = f">= {_bound(lo)}" if lo is not None else f"<= {_bound(hi)}"
+        shown = f" {unit}" if unit else ""
+        raise SceneError(path, f"expected a number in {where}{shown}, got {_show(value)}")
     return x
 
 
@@ -103,11 +136,13 @@ def _integer(value: Any, path: str, lo: int, hi: int) -> int:
     return int(value)
 
 
-def _vector(value: Any, path: str) -> list[float]:
-    """``[x, y]``: a list of exactly two finite numbers."""
+def _vector(value: Any, path: str, **bounds) -> list[float]:
+    """``[x, y]``: a list of exactly two finite numbers (``bounds`` as for :func:`_number`)."""
+    if getattr(value, "ndim", None) == 1:  # a numpy array from the Python API
+        value = value.tolist()
     if not isinstance(value, list | tuple) or len(value) != 2:
         raise SceneError(path, f"expected [x, y] (a list of 2 numbers), got {_show(value)}")
-    return [_number(value[0], f"{path}[0]"), _number(value[1], f"{path}[1]")]
+    return [_number(value[0], f"{path}[0]", **bounds), _number(value[1], f"{path}[1]", **bounds)]
 
 
 def _boolean(value: Any, path: str) -> bool:

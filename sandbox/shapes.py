@@ -8,11 +8,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox import geometry
+import sandbox.geometry as geometry
+
+
+def _check(owner: str, kind: str, values: dict) -> dict:
+    """The arguments of a shape, checked as the scene object ``kind`` (SceneError, at the call)."""
+    from sandbox.arguments import check_arguments
+
+    return check_arguments(owner, kind, values)
 
 
 class Shape:
-    """Common material and mass parameters of every shape."""
+    """Common material and mass parameters of every shape.
+
+    ``density`` (kg/m^2, default 1), ``mass`` (kg, instead of density), ``restitution`` (0..1,
+    default 0) and ``friction`` (>= 0, default 0.5); checked at the call with the scene files'
+    ranges, and an unknown keyword gets a did-you-mean (``elasticity`` -> ``restitution``).
+    """
 
     kind = "shape"
 
@@ -41,6 +53,17 @@ class Shape:
             "friction": self.friction,
         }
 
+    def _material_repr(self) -> str:
+        parts = [] if self.mass is not None else [f"density={self.density:g}"]
+        if self.mass is not None:
+            parts.append(f"mass={self.mass:g}")
+        parts += [f"restitution={self.restitution:g}", f"friction={self.friction:g}"]
+        return ", ".join(parts)
+
+
+def _material_of(values: dict) -> dict:
+    return {k: values[k] for k in ("density", "mass", "restitution", "friction") if k in values}
+
 
 class Circle(Shape):
     """A disc of ``radius`` (m) centred at ``offset`` (m, body frame)."""
@@ -48,9 +71,13 @@ class Circle(Shape):
     kind = "circle"
 
     def __init__(self, radius: float, offset=(0.0, 0.0), **material) -> None:
-        super().__init__(**material)
-        self.radius = float(radius)
-        self.offset = np.array(offset, dtype=float)
+        from sandbox.arguments import not_a_body_hint
+
+        not_a_body_hint(radius, "Circle")
+        values = _check("Circle", "circle", {"radius": radius, "offset": offset, **material})
+        super().__init__(**_material_of(values))
+        self.radius = values["radius"]
+        self.offset = np.array(values["offset"], dtype=float)
 
     def mass_properties(self):
         from sandbox.mass import circle_mass_properties
@@ -60,6 +87,11 @@ class Circle(Shape):
     def to_dict(self) -> dict:
         return {"type": "circle", "radius": self.radius, "offset": self.offset.tolist()}
 
+    def __repr__(self) -> str:
+        x, y = self.offset
+        where = f", offset=({x:g}, {y:g})" if (x, y) != (0.0, 0.0) else ""
+        return f"Circle({self.radius:g}{where}, {self._material_repr()})"
+
 
 class Polygon(Shape):
     """A convex polygon; ``vertices`` (m, body frame) in either winding, stored CCW."""
@@ -67,11 +99,14 @@ class Polygon(Shape):
     kind = "polygon"
 
     def __init__(self, vertices, **material) -> None:
-        super().__init__(**material)
-        problem = geometry.polygon_problem(vertices)
-        if problem:
-            raise ValueError(f"vertices: {problem}")
-        self.vertices = geometry.make_ccw(np.asarray(vertices, dtype=float))
+        from sandbox.arguments import not_a_body_hint
+
+        not_a_body_hint(vertices, "Polygon")
+        if isinstance(vertices, np.ndarray):
+            vertices = vertices.tolist()
+        values = _check("Polygon", "polygon", {"vertices": vertices, **material})
+        super().__init__(**_material_of(values))
+        self.vertices = geometry.make_ccw(np.asarray(values["vertices"], dtype=float))
 
     def mass_properties(self):
         from sandbox.mass import polygon_mass_properties
@@ -81,15 +116,25 @@ class Polygon(Shape):
     def to_dict(self) -> dict:
         return {"type": "polygon", "vertices": self.vertices.tolist()}
 
+    def __repr__(self) -> str:
+        points = ", ".join(f"({x:g}, {y:g})" for x, y in self.vertices)
+        return f"Polygon([{points}], {self._material_repr()})"
+
 
 class Box(Polygon):
     """A ``width`` x ``height`` rectangle (m) centred at ``offset``, turned by ``angle`` (rad)."""
 
     def __init__(self, width: float, height: float, offset=(0.0, 0.0), angle: float = 0.0, **mat):
-        self.width, self.height = float(width), float(height)
-        self.offset = np.array(offset, dtype=float)
-        self.angle = float(angle)
-        super().__init__(geometry.box_vertices(width, height, offset, angle), **mat)
+        from sandbox.arguments import not_a_body_hint
+
+        not_a_body_hint(width, "Box")
+        given = {"width": width, "height": height, "offset": offset, "angle": angle, **mat}
+        values = _check("Box", "box", given)
+        self.width, self.height = values["width"], values["height"]
+        self.offset = np.array(values["offset"], dtype=float)
+        self.angle = values["angle"]
+        Shape.__init__(self, **_material_of(values))  # the corners need no convexity check
+        self.vertices = geometry.box_vertices(self.width, self.height, self.offset, self.angle)
 
     def to_dict(self) -> dict:
         return {
@@ -99,6 +144,12 @@ class Box(Polygon):
             "offset": self.offset.tolist(),
             "angle": self.angle,
         }
+
+    def __repr__(self) -> str:
+        x, y = self.offset
+        where = f", offset=({x:g}, {y:g})" if (x, y) != (0.0, 0.0) else ""
+        turn = f", angle={self.angle:g}" if self.angle else ""
+        return f"Box({self.width:g}, {self.height:g}{where}{turn}, {self._material_repr()})"
 
 
 def shape_to_dict(shape: Shape) -> dict:

@@ -25,9 +25,10 @@ import math
 import numpy as np
 
 from sandbox.jit import njit
+from sandbox.records import CIRCLE, POLYGON
 
-CIRCLE, POLYGON = 0, 1
 LINEAR_SLOP = 0.005  # m
+MAX_ITERATIONS = 64  # conservative advancement steps before giving up (the last t is used)
 
 
 @njit
@@ -132,27 +133,19 @@ def _distance_world(ka, ra, wca, wva, na, kb, rb, wcb, wvb, nb):
 
 
 @njit
-def distance(
-    kind_a,
-    radius_a,
-    center_a,
-    verts_a,
-    pos_a,
-    angle_a,
-    kind_b,
-    radius_b,
-    center_b,
-    verts_b,
-    pos_b,
-    angle_b,
-):
+def distance(shape_a, pose_a, shape_b, pose_b):
     """Signed distance (m) between two convex shapes at the given poses, and the unit direction
-    from a to b along which it is measured: ``(d, nx, ny)``, d < 0 when they overlap."""
+    from a to b along which it is measured: ``(d, nx, ny)``, d < 0 when they overlap.
+
+    ``shape = (kind, radius, center, verts)`` (about the centre of mass, body frame; ``verts``
+    an empty (0, 2) array for circles), ``pose = (position (2,), angle)``."""
+    kind_a, radius_a, center_a, verts_a = shape_a
+    kind_b, radius_b, center_b, verts_b = shape_b
     wca, wcb = np.empty(2), np.empty(2)
     wva = np.empty((verts_a.shape[0], 2))
     wvb = np.empty((verts_b.shape[0], 2))
-    _place(kind_a, center_a, verts_a, pos_a[0], pos_a[1], angle_a, wca, wva)
-    _place(kind_b, center_b, verts_b, pos_b[0], pos_b[1], angle_b, wcb, wvb)
+    _place(kind_a, center_a, verts_a, pose_a[0][0], pose_a[0][1], pose_a[1], wca, wva)
+    _place(kind_b, center_b, verts_b, pose_b[0][0], pose_b[0][1], pose_b[1], wcb, wvb)
     return _distance_world(
         kind_a, radius_a, wca, wva, verts_a.shape[0], kind_b, radius_b, wcb, wvb, verts_b.shape[0]
     )
@@ -170,10 +163,13 @@ def bound_radius(kind, radius, center, verts):
 
 
 @njit
-def _advance(shape_a, motion_a, shape_b, motion_b, target, tol, max_iterations, wca, wva, wcb, wvb):
+def _advance(shape_a, motion_a, shape_b, motion_b, limits, work):
     """Conservative advancement of ``shape = (kind, radius, center, verts, bound)`` along
     ``motion = (x0, y0, angle0, x1, y1, angle1)``; returns t in [0, 1], or -1.0 when the shapes
-    are already within ``target + tol`` at t = 0. Work buffers wca, wcb (2,), wva, wvb (n, 2)."""
+    are already within ``target + tol`` at t = 0. ``limits = (target, tol, max_iterations)``;
+    ``work = (wca, wva, wcb, wvb)`` buffers, (2,) and (n, 2)."""
+    target, tol, max_iterations = limits
+    wca, wva, wcb, wvb = work
     ka, ra, ca, va, bound_a = shape_a
     kb, rb, cb, vb, bound_b = shape_b
     xa0, ya0, aa0, xa1, ya1, aa1 = motion_a
@@ -218,161 +214,76 @@ def _advance(shape_a, motion_a, shape_b, motion_b, target, tol, max_iterations, 
 
 
 @njit
-def time_of_impact(
-    kind_a,
-    radius_a,
-    center_a,
-    verts_a,
-    pos_a0,
-    angle_a0,
-    pos_a1,
-    angle_a1,
-    kind_b,
-    radius_b,
-    center_b,
-    verts_b,
-    pos_b0,
-    angle_b0,
-    pos_b1,
-    angle_b1,
-    target_separation=0.0,
-    tolerance=1e-4,
-    max_iterations=64,
-):
+def time_of_impact(shape_a, motion_a, shape_b, motion_b, target_separation=0.0, tolerance=1e-4):
     """Fraction t in [0, 1] of the step at which shapes a and b first come within
     ``target_separation`` (m, up to ``tolerance``) of each other; 1.0 when they do not this
-    step, 0.0 when they already are at t = 0. Poses: centre of mass (2,) and angle at t = 0 and
-    t = 1, interpolated linearly."""
+    step, 0.0 when they already are at t = 0.
+
+    ``shape = (kind, radius, center, verts)`` as for :func:`distance`; ``motion = (position at
+    t = 0 (2,), angle at t = 0, position at t = 1, angle at t = 1)``, interpolated linearly."""
     wca, wcb = np.empty(2), np.empty(2)
-    wva = np.empty((verts_a.shape[0], 2))
-    wvb = np.empty((verts_b.shape[0], 2))
-    shape_a = (
-        kind_a,
-        radius_a,
-        center_a,
-        verts_a,
-        bound_radius(kind_a, radius_a, center_a, verts_a),
-    )
-    shape_b = (
-        kind_b,
-        radius_b,
-        center_b,
-        verts_b,
-        bound_radius(kind_b, radius_b, center_b, verts_b),
-    )
-    motion_a = (pos_a0[0], pos_a0[1], angle_a0, pos_a1[0], pos_a1[1], angle_a1)
-    motion_b = (pos_b0[0], pos_b0[1], angle_b0, pos_b1[0], pos_b1[1], angle_b1)
+    wva = np.empty((shape_a[3].shape[0], 2))
+    wvb = np.empty((shape_b[3].shape[0], 2))
     t = _advance(
-        shape_a,
-        motion_a,
-        shape_b,
-        motion_b,
-        target_separation,
-        tolerance,
-        max_iterations,
-        wca,
-        wva,
-        wcb,
-        wvb,
+        (*shape_a, bound_radius(*shape_a)),
+        _flat(motion_a),
+        (*shape_b, bound_radius(*shape_b)),
+        _flat(motion_b),
+        (target_separation, tolerance, MAX_ITERATIONS),
+        (wca, wva, wcb, wvb),
     )
     return max(t, 0.0)
 
 
 @njit
-def ccd_fractions(
-    ccd_body_mask,
-    com0,
-    angle0,
-    com1,
-    angle1,
-    shape_body,
-    shape_kind,
-    shape_radius,
-    shape_center,
-    shape_vstart,
-    shape_vcount,
-    verts,
-    candidate_pairs,
-    target_separation=LINEAR_SLOP,
-    tolerance=0.25 * LINEAR_SLOP,
-    max_iterations=64,
-):
-    """For every body, the fraction of this step's motion (com0, angle0 -> com1, angle1) it may
-    take: the earliest time of impact over the ``candidate_pairs`` ((k, 2) shape indices) that
-    involve a body with ``ccd_body_mask`` set, 1.0 for other bodies and when nothing is hit.
-
-    Pairs already within ``target_separation + tolerance`` at the start are left to the
-    discrete narrowphase (its contact margin should be at least that), so a body resting on
-    the ground is never frozen.
-    """
-    n = com0.shape[0]
-    frac = np.ones(n)
-    vmax = 1
-    for k in range(shape_vcount.shape[0]):
-        vmax = max(vmax, shape_vcount[k])
-    wca, wcb = np.empty(2), np.empty(2)
-    wva, wvb = np.empty((vmax, 2)), np.empty((vmax, 2))
-    for q in range(candidate_pairs.shape[0]):
-        i, j = candidate_pairs[q, 0], candidate_pairs[q, 1]
-        bi, bj = shape_body[i], shape_body[j]
-        if bi == bj or not (ccd_body_mask[bi] or ccd_body_mask[bj]):
-            continue
-        va = verts[shape_vstart[i] : shape_vstart[i] + shape_vcount[i]]
-        vb = verts[shape_vstart[j] : shape_vstart[j] + shape_vcount[j]]
-        if shape_kind[i] == CIRCLE:
-            va = verts[0:0]
-        if shape_kind[j] == CIRCLE:
-            vb = verts[0:0]
-        ra, rb = shape_radius[i], shape_radius[j]
-        ka, kb = shape_kind[i], shape_kind[j]
-        ca, cb = shape_center[i], shape_center[j]
-        shape_a = (ka, ra, ca, va, bound_radius(ka, ra, ca, va))
-        shape_b = (kb, rb, cb, vb, bound_radius(kb, rb, cb, vb))
-        motion_a = (com0[bi, 0], com0[bi, 1], angle0[bi], com1[bi, 0], com1[bi, 1], angle1[bi])
-        motion_b = (com0[bj, 0], com0[bj, 1], angle0[bj], com1[bj, 0], com1[bj, 1], angle1[bj])
-        t = _advance(
-            shape_a,
-            motion_a,
-            shape_b,
-            motion_b,
-            target_separation,
-            tolerance,
-            max_iterations,
-            wca,
-            wva,
-            wcb,
-            wvb,
-        )
-        if t < 0.0:  # already in contact: the narrowphase handles it
-            continue
-        if ccd_body_mask[bi] and t < frac[bi]:
-            frac[bi] = t
-        if ccd_body_mask[bj] and t < frac[bj]:
-            frac[bj] = t
-    return frac
+def _flat(motion):
+    """(x0, y0, angle0, x1, y1, angle1) of a motion (p0, angle0, p1, angle1)."""
+    p0, a0, p1, a1 = motion
+    return p0[0], p0[1], a0, p1[0], p1[1], a1
 
 
 @njit
-def swept_pairs(ccd_body_mask, com0, com1, shape_body, shape_bound):
+def shape_of(shape, vertices):
+    """A SHAPE record as ``(kind, radius, center, verts)`` for :func:`distance` and
+    :func:`time_of_impact` (polygon vertices copied out of the VERTEX records)."""
+    n = shape["vertex_count"] if shape["kind"] == POLYGON else 0
+    verts = np.empty((n, 2))
+    for v in range(n):
+        q = vertices[shape["first_vertex"] + v]["point"]
+        verts[v, 0], verts[v, 1] = q[0], q[1]
+    center = np.array([shape["center"][0], shape["center"][1]])
+    return shape["kind"], shape["radius"], center, verts
+
+
+@njit
+def body_motion(b):
+    """A body's planned motion this step: from (com, angle) to (com + motion, angle + turn)."""
+    p0 = np.array([b["com"][0], b["com"][1]])
+    p1 = np.array([b["com"][0] + b["motion"][0], b["com"][1] + b["motion"][1]])
+    return p0, b["angle"], p1, b["angle"] + b["motion_turn"]
+
+
+@njit
+def swept_pairs(bodies, shapes):
     """Shape pairs (k, 2), i < j, whose swept discs may meet this step and where at least one
-    body has ccd: each shape stays within ``shape_bound`` of its body's centre of mass, which
-    moves from com0 to com1, so its swept box is that segment's box grown by the bound."""
-    m = shape_body.shape[0]
+    body has ccd: each shape stays within ``bound`` of its body's centre of mass, which moves
+    by ``motion``, so its swept box is that segment's box grown by the bound."""
+    m = shapes.shape[0]
     box = np.empty((m, 4))
     for k in range(m):
-        b, r = shape_body[k], shape_bound[k]
-        box[k, 0] = min(com0[b, 0], com1[b, 0]) - r
-        box[k, 1] = min(com0[b, 1], com1[b, 1]) - r
-        box[k, 2] = max(com0[b, 0], com1[b, 0]) + r
-        box[k, 3] = max(com0[b, 1], com1[b, 1]) + r
+        b, r = bodies[shapes[k]["body"]], shapes[k]["bound"]
+        for a in range(2):
+            box[k, a] = min(b["com"][a], b["com"][a] + b["motion"][a]) - r
+            box[k, a + 2] = max(b["com"][a], b["com"][a] + b["motion"][a]) + r
     out = np.empty((16, 2), dtype=np.int64)
     n = 0
     for i in range(m):
-        if not ccd_body_mask[shape_body[i]]:
+        bi = shapes[i]["body"]
+        if not bodies[bi]["ccd"]:
             continue
         for j in range(m):
-            bj = shape_body[j]
-            if bj == shape_body[i] or (ccd_body_mask[bj] and j < i):
+            bj = shapes[j]["body"]
+            if bj == bi or (bodies[bj]["ccd"] and j < i):
                 continue  # same body, or a ccd pair already listed from its other shape
             if box[i, 0] > box[j, 2] or box[j, 0] > box[i, 2]:
                 continue
@@ -387,43 +298,53 @@ def swept_pairs(ccd_body_mask, com0, com1, shape_body, shape_bound):
     return out[:n]
 
 
-def limit_motion(
-    world, dp: np.ndarray, dphi: np.ndarray, target_separation: float | None = None
-) -> None:
-    """Scale the planned increments ``dp`` (n, 2) and ``dphi`` (n,) of the world's ccd bodies
-    (in place) so that each stops at its time of impact, ``target_separation`` (m, default a
-    quarter of the world's contact margin) short of touching; the next step's narrowphase then
-    finds the contact (retroactive detection takes over)."""
-    g = world.geometry()
-    if len(g) < 2 or not np.any(world.ccd):
+@njit
+def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance):
+    """For every body, the fraction of this step's motion (``motion``, ``motion_turn``) it may
+    take: the earliest time of impact over the ``pairs`` ((k, 2) shape indices) that involve a
+    body with ``ccd`` set, 1.0 for other bodies and when nothing is hit.
+
+    Pairs already within ``target_separation + tolerance`` at the start are left to the
+    discrete narrowphase (its contact margin should be at least that), so a body resting on
+    the ground is never frozen.
+    """
+    frac = np.ones(bodies.shape[0])
+    for q in range(pairs.shape[0]):
+        i, j = pairs[q, 0], pairs[q, 1]
+        bi, bj = shapes[i]["body"], shapes[j]["body"]
+        if bi == bj or not (bodies[bi]["ccd"] or bodies[bj]["ccd"]):
+            continue
+        t = time_of_impact(
+            shape_of(shapes[i], vertices),
+            body_motion(bodies[bi]),
+            shape_of(shapes[j], vertices),
+            body_motion(bodies[bj]),
+            target_separation,
+            tolerance,
+        )
+        if t <= 0.0:  # already in contact: the narrowphase handles it
+            continue
+        for b in (bi, bj):
+            if bodies[b]["ccd"] and t < frac[b]:
+                frac[b] = t
+    return frac
+
+
+@njit
+def limit_ccd_motion(bodies, shapes, vertices, context) -> None:
+    """Conservative advancement for the ``ccd`` bodies: each moves only up to its time of
+    impact, a quarter of the contact margin short of touching (``motion`` and ``motion_turn``
+    scaled in place); the next step's narrowphase then finds the contact (retroactive detection
+    takes over)."""
+    ctx = context[0]
+    margin = ctx["contact_margin"]
+    target = 0.25 * margin if margin > 0.0 else LINEAR_SLOP
+    pairs = swept_pairs(bodies, shapes)
+    if pairs.shape[0] == 0:
         return
-    margin = float(getattr(world.settings, "contact_margin", 0.0))
-    if target_separation is None:
-        target_separation = 0.25 * margin if margin > 0.0 else LINEAR_SLOP
-    com0 = np.ascontiguousarray(world.com, dtype=np.float64)
-    angle0 = np.ascontiguousarray(world.angles(), dtype=np.float64)
-    com1 = com0 + dp
-    angle1 = angle0 + dphi
-    ccd = np.ascontiguousarray(world.ccd, dtype=np.bool_)
-    pairs = swept_pairs(ccd, com0, com1, g.shape_body, g.shape_bound)
-    if len(pairs) == 0:
-        return
-    frac = ccd_fractions(
-        ccd,
-        com0,
-        angle0,
-        com1,
-        angle1,
-        g.shape_body,
-        g.shape_kind,
-        g.shape_radius,
-        g.shape_center,
-        g.shape_vstart,
-        g.shape_vcount,
-        g.verts,
-        pairs,
-        float(target_separation),
-        0.25 * float(target_separation),
-    )
-    dp *= frac[:, None]
-    dphi *= frac
+    frac = ccd_fractions(bodies, shapes, vertices, pairs, target, 0.25 * target)
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        b["motion"][0] *= frac[i]
+        b["motion"][1] *= frac[i]
+        b["motion_turn"] *= frac[i]

@@ -1,26 +1,55 @@
-"""The world: every body's state in contiguous arrays, and the step (slides, "State Update").
+"""The world: every body's state in records, and the step (slides, "State Update").
 
-Per step (``docs/architecture.md`` has the details):
-
-1. forces: gravity, constant forces, controllers, force generators -> accelerations
-2. the integrator's free-motion increments (dp, dv, dphi, domega)
-3. v += dv; contacts found at the current positions (retroactive detection)
-4. the solver's impulses change v and omega (contacts and joints); bounces reflect the
-   approach velocities from before step 3 (before this step's gravity and forces)
-5. p += dp + (impulse velocity change) dt; orientation turned likewise
-6. continuous collision for ``ccd`` bodies, then the penetration fix
+The bodies are one array of BODY records (``world.state``), the orientations one array in the
+settings' representation (``world.rot``), the shapes, joints and force generators arrays of
+their records (:mod:`sandbox.records`); :class:`~sandbox.body.Body`, the joints and the force
+generators are views of their rows. ``world.com``, ``world.vel`` and the other per-body arrays
+are views of the record fields. A step runs the stages of :mod:`sandbox.step`.
 """
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
-from sandbox import collision, integrators, orientation
-from sandbox.body import DYNAMIC, KINEMATIC, STATIC, TYPES, Body
-from sandbox.geometry_arrays import Geometry, build_geometry
+import sandbox.orientation as orientation
+from sandbox.body import DYNAMIC, TYPES, Body
+from sandbox.contact import ContactBuffers, Manifolds, find_contacts
+from sandbox.context import fill_context
+from sandbox.errors import SimulationError
+from sandbox.forces import MAX_GENERATORS, ForceGenerator
+from sandbox.jit import entry
+from sandbox.projectile import advance_analytic
+from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SPRING
 from sandbox.settings import Settings
+from sandbox.shape_records import Geometry, build_geometry
+from sandbox.step import fast_step, free_step, staged_step
 
 _EULERS = ("semi_implicit_euler", "explicit_euler")
+
+
+class WorldArrays(NamedTuple):
+    """Everything a step reads and writes, for :mod:`sandbox.step`."""
+
+    bodies: np.ndarray
+    rot: np.ndarray
+    shapes: np.ndarray
+    vertices: np.ndarray
+    joints: np.ndarray
+    generators: np.ndarray
+    buffers: ContactBuffers
+    context: np.ndarray
+
+
+def _field(name: str) -> property:
+    def get(self):
+        return self.state[name]
+
+    def put(self, value):
+        self.state[name] = value
+
+    return property(get, put, doc=f"Every body's ``{name}`` (a view of the BODY records).")
 
 
 class World:
@@ -33,6 +62,9 @@ class World:
     def __init__(
         self, gravity=(0.0, -9.81), dt: float = 1.0 / 60.0, name: str = "world", **settings
     ):
+        from sandbox.arguments import check_world_arguments  # the API's checks (SceneError)
+
+        check_world_arguments(gravity, dt, name, settings)
         if not dt > 0:
             raise ValueError("dt: must be > 0")
         self.name = name
@@ -44,58 +76,79 @@ class World:
         self.bodies: list[Body] = []
         self.joints: list = []
         self.forces: list = []
-        self.stats: dict = {}
-        self.manifolds = None  # contacts of the last step (sandbox.contact.Manifolds)
+        self.timer = None  # a sandbox.step.StageTimer: time every stage (the staged path)
         self._by_name: dict[str, Body] = {}
-        self._geometry: Geometry | None = None
-        self._analytic_ref = None
-        self._solver_cache: dict = {}
+        self._python_forces: list = []  # force objects without a record: evaluated per step
         self._controlled: list[Body] = []
-        self._checked = False  # masses checked and ccd flag known
-        self._has_ccd = False
-        self._has_constant = False
-        self._alloc(0)
+        self.state = np.zeros(0, dtype=BODY)
+        self.rot = np.zeros((0, orientation.FLOATS_STORED[self.settings.orientation]))
+        self.joint_table = np.zeros(0, dtype=JOINT)
+        self.generator_table = np.zeros(0, dtype=GENERATOR)
+        self.context = np.zeros(1, dtype=CONTEXT)
+        self.context[0]["sorted_axis"] = -1
+        self._geometry: Geometry | None = None
+        self._buffers: ContactBuffers | None = None
+        self._found_stats: dict | None = None
+        self._analytic_ref = None
+        self._dirty = True  # shapes, masses, joints, forces or settings changed: _prepare()
+        self._fast = False
+        self._step_dt = 0.0  # the dt the step context holds
+        self._held = False  # a Manifolds view of the contact buffers was handed out
+        self._run = None  # the way a step runs (see _choose_path)
+        self.has_ccd = False
+        self._watch_settings()
 
     # --- arrays -------------------------------------------------------------------------------
-    def _alloc(self, n: int) -> None:
-        self.kind = np.zeros(n, dtype=np.int64)
-        self.com = np.zeros((n, 2))
-        self.local_com = np.zeros((n, 2))
-        self.vel = np.zeros((n, 2))
-        self.omega = np.zeros(n)
-        # orientation in the settings' representation: 1, 4 or 2 floats per body
-        self.rot = np.zeros((n, orientation.FLOATS_STORED[self.settings.orientation]))
-        self.cs = np.zeros((n, 2))
-        self.mass = np.zeros(n)
-        self.inv_mass = np.zeros(n)
-        self.moment = np.zeros(n)
-        self.inv_moment = np.zeros(n)
-        self.force = np.zeros((n, 2))
-        self.torque = np.zeros(n)
-        self.const_force = np.zeros((n, 2))
-        self.const_torque = np.zeros(n)
-        self.ccd = np.zeros(n, dtype=bool)
-        # what controllers, constant forces and apply_force/apply_torque applied in the last
-        # step (N, N m), for drawing force arrows; gravity and contact impulses not included
-        self.applied_force = np.zeros((n, 2))
-        self.applied_torque = np.zeros(n)
-        self._dphi = np.zeros(n)  # scratch: each body's turn this step
-
-    def _grow(self) -> int:
-        n = len(self.kind)
-        for key, value in list(vars(self).items()):
-            if (
-                isinstance(value, np.ndarray)
-                and value.shape[:1] == (n,)
-                and key not in ("gravity",)
-            ):
-                pad = np.zeros((1, *value.shape[1:]), dtype=value.dtype)
-                setattr(self, key, np.concatenate([value, pad]))
-        return n
+    kind = _field("kind")  # DYNAMIC, STATIC or KINEMATIC
+    com = _field("com")  # centre of mass (m)
+    local_com = _field("local_com")  # centre of mass in the body frame (m)
+    vel = _field("vel")  # m/s
+    omega = _field("omega")  # rad/s
+    cs = _field("cs")  # (cos, sin) of the angle
+    mass = _field("mass")  # kg
+    inv_mass = _field("inv_mass")
+    moment = _field("moment")  # kg m^2
+    inv_moment = _field("inv_moment")
+    force = _field("force")  # N, accumulated for the coming step
+    torque = _field("torque")  # N m
+    const_force = _field("const_force")
+    const_torque = _field("const_torque")
+    applied_force = _field("applied_force")  # what the last step applied (N)
+    applied_torque = _field("applied_torque")
+    ccd = _field("ccd")
 
     @property
     def orientation_kind(self) -> int:
         return orientation.NAMES[self.settings.orientation]
+
+    def arrays(self) -> WorldArrays:
+        """The records a step works on (after :meth:`_prepare`)."""
+        g = self.geometry()
+        return WorldArrays(
+            self.state,
+            self.rot,
+            g.table,
+            g.vertices,
+            self.joint_table,
+            self.generator_table,
+            self._buffers_for(g),
+            self.context,
+        )
+
+    def geometry(self) -> Geometry:
+        """Every shape as records (rebuilt after shapes or masses change)."""
+        if self._geometry is None:
+            self._geometry = build_geometry(self.bodies, self.local_com)
+        return self._geometry
+
+    def _buffers_for(self, g: Geometry) -> ContactBuffers:
+        b = self._buffers
+        if b is None or len(b.proxies) != len(g):
+            b = self._buffers = ContactBuffers(len(g))
+            ctx = self.context[0]
+            ctx["sorted_axis"] = -1
+            ctx["contact_count"][0] = ctx["contact_count"][1] = 0
+        return b
 
     # --- building -----------------------------------------------------------------------------
     def add_body(self, body: Body) -> Body:
@@ -106,18 +159,19 @@ class World:
             body.name = f"body{len(self.bodies)}"
         if body.name in self._by_name:
             raise ValueError(f"duplicate body name {body.name!r}")
-        i = self._grow()
+        i = len(self.state)
+        self.state = np.concatenate([self.state, np.zeros(1, dtype=BODY)])
+        self.rot = np.concatenate([self.rot, np.zeros((1, self.rot.shape[1]))])
         body.world, body.index = self, i
         self.bodies.append(body)
         self._by_name[body.name] = body
-        init = body._init
-        self.kind[i] = TYPES[body.type]
-        self.vel[i] = init["velocity"]
-        self.omega[i] = init["angular_velocity"]
-        self.ccd[i] = init["ccd"]
-        self.const_force[i], self.const_torque[i] = body._constant
+        init, row = body._init, self.state[i]
+        row["kind"] = TYPES[body.type]
+        row["vel"] = init["velocity"]
+        row["omega"] = init["angular_velocity"]
+        row["ccd"] = init["ccd"]
+        row["const_force"], row["const_torque"] = body._constant
         self._controllers_changed()
-        self._constants_changed()
         self._set_angle(i, init["angle"])
         self._update_mass(body, origin=init["position"])
         return body
@@ -125,14 +179,28 @@ class World:
     def add_joint(self, joint):
         """Add a joint (see :mod:`sandbox.joints`); returned."""
         joint.attach(self)
+        self.joint_table = np.concatenate([self.joint_table, joint._own])
+        joint.world, joint.index = self, len(self.joint_table) - 1
+        joint.place(self)
+        joint.attached(self)
         self.joints.append(joint)
+        self._dirty = True
         return joint
 
     def add_force(self, generator):
-        """Add a force generator (see :mod:`sandbox.forces`); returned."""
+        """Add a force generator (see :mod:`sandbox.forces`); returned. An object of another
+        kind with ``accumulate(world, p, v, phi, w, f, tau)`` is evaluated once per step."""
         if hasattr(generator, "attach"):
             generator.attach(self)
+        if isinstance(generator, ForceGenerator):
+            if len(self.generator_table) >= MAX_GENERATORS:
+                raise ValueError(f"forces: at most {MAX_GENERATORS} force generators")
+            self.generator_table = np.concatenate([self.generator_table, generator._own])
+            generator.world, generator.index = self, len(self.generator_table) - 1
+        else:
+            self._python_forces.append(generator)
         self.forces.append(generator)
+        self._dirty = True
         return generator
 
     def body(self, name: str) -> Body:
@@ -144,48 +212,49 @@ class World:
 
     def _update_mass(self, body: Body, origin=None) -> None:
         i = body.index
+        row = self.state[i]
         if origin is None:
-            origin = np.asarray(body.position)
+            origin = np.asarray(body.position, dtype=float)
         mass, local_com, moment = body.mass_properties()
-        self.local_com[i] = local_com
-        c, s = self.cs[i]
-        self.com[i] = np.asarray(origin) + [
+        row["local_com"] = local_com
+        c, s = row["cs"]
+        row["com"] = np.asarray(origin, dtype=float) + [
             c * local_com[0] - s * local_com[1],
             s * local_com[0] + c * local_com[1],
         ]
-        if body.type == "dynamic":
-            if not (mass > 0 and moment > 0):  # no shapes yet: checked again when stepping
-                self.mass[i] = self.moment[i] = self.inv_mass[i] = self.inv_moment[i] = 0.0
-                self._geometry = None
-                self._checked = False
-                return
-            self.mass[i], self.moment[i] = mass, moment
-            self.inv_mass[i], self.inv_moment[i] = 1.0 / mass, 1.0 / moment
+        if body.type == "dynamic" and not (mass > 0 and moment > 0):
+            # no shapes yet: checked again when stepping
+            row["mass"] = row["moment"] = row["inv_mass"] = row["inv_moment"] = 0.0
+        elif body.type == "dynamic":
+            row["mass"], row["moment"] = mass, moment
+            row["inv_mass"], row["inv_moment"] = 1.0 / mass, 1.0 / moment
         else:
-            self.mass[i] = self.moment[i] = np.inf
-            self.inv_mass[i] = self.inv_moment[i] = 0.0
+            row["mass"] = row["moment"] = np.inf
+            row["inv_mass"] = row["inv_moment"] = 0.0
         self._geometry = None
-        self._checked = False
+        self._dirty = True
         self._state_changed()
 
     def _controllers_changed(self) -> None:
         self._controlled = [b for b in self.bodies if b.controller is not None]
 
+    def _constants_changed(self) -> None:
+        """Constant forces are applied by the step itself: nothing to remember."""
+
     def _shapes_changed(self, body: Body) -> None:
         self._update_mass(body)
 
     def _set_angle(self, i: int, angle: float) -> None:
-        row = self.rot[i : i + 1]
-        orientation.set_angles(self.orientation_kind, row, np.array([angle]))
-        orientation.cos_sin(self.orientation_kind, row, self.cs[i : i + 1])
+        self.state[i]["angle"] = float(angle)
+        orientation.place_bodies(self.state[i : i + 1], self.rot[i : i + 1], self.orientation_kind)
         self._state_changed()
 
     def _state_changed(self) -> None:
         self._analytic_ref = None
 
     def angles(self) -> np.ndarray:
-        """Every body's angle (rad, in [-pi, pi])."""
-        return orientation.angles_of(self.orientation_kind, self.rot)
+        """Every body's angle (rad), continuous: turns accumulate."""
+        return self.state["angle"].copy()
 
     def origins(self) -> np.ndarray:
         """Every body's origin (n, 2): com - R local_com."""
@@ -195,169 +264,154 @@ class World:
             [c * lc[:, 0] - s * lc[:, 1], s * lc[:, 0] + c * lc[:, 1]], axis=1
         )
 
-    def geometry(self) -> Geometry:
-        """Flattened shape arrays (rebuilt after shapes change)."""
-        if self._geometry is None:
-            self._geometry = build_geometry(self.bodies, self.local_com)
-        return self._geometry
+    # --- settings -----------------------------------------------------------------------------
+    def _watch_settings(self) -> None:
+        """Be told when a setting changes (the world adapts before the next step)."""
+        try:
+            self.settings._observer = self._setting_changed
+        except AttributeError:  # pragma: no cover - a Settings without the hook
+            pass
 
-    # --- forces -------------------------------------------------------------------------------
-    def _accelerations(self, extra_force: np.ndarray, extra_torque: np.ndarray):
-        """accel(p, v, phi, omega) for the integrators: gravity + forces / m, torques / I."""
-        dyn = self.kind == DYNAMIC
-        inv_m, inv_i = self.inv_mass, self.inv_moment
-        gravity = np.where(dyn[:, None], self.gravity, 0.0)
-        generators = self._force_generators()
+    def _setting_changed(self, name: str, old, new) -> None:
+        if name == "orientation" and old != new:
+            self._switch_orientation(new)
+        self._dirty = True
 
-        def accel(p, v, phi, w):
-            f = extra_force.copy()
-            tau = extra_torque.copy()
-            for g in generators:
-                g.accumulate(self, p, v, phi, w, f, tau)
-            return gravity + f * inv_m[:, None], tau * inv_i
+    def _switch_orientation(self, name: str) -> None:
+        """Store every body's orientation in representation ``name`` (from its angle)."""
+        self.rot = np.zeros((len(self.state), orientation.FLOATS_STORED[name]))
+        orientation.place_bodies(self.state, self.rot, orientation.NAMES[name])
 
-        return accel
-
-    # --- the step -----------------------------------------------------------------------------
-    def step(self, dt: float | None = None) -> None:
-        """Advance the world by ``dt`` seconds (default: the world's dt)."""
-        dt = self.dt if dt is None else float(dt)
-        if not dt > 0:
-            raise ValueError("dt: must be > 0")
-        if not self._checked:
-            self._check_masses()
-        for body in self._controlled:
-            body.controller(body, self)
-        if self._has_constant:
-            self.force += self.const_force
-            self.torque += self.const_torque
-        self.applied_force[:] = self.force
-        self.applied_torque[:] = self.torque
-        integrator = self.settings.integrator
-        if integrator == "analytic":
-            self._step_analytic(dt)
-        elif integrator in _EULERS and not self._has_ccd and not self._has_force_generators():
-            self._step_euler(dt, explicit=integrator == "explicit_euler")
-        else:
-            self._step_numeric(dt)
-        self.time += dt
-        self.steps += 1
-
-    def _force_generators(self) -> list:
-        """Force generators, and joints that act as forces (springs: ``accumulate``)."""
-        return [*self.forces, *(j for j in self.joints if hasattr(j, "accumulate"))]
-
-    def _has_force_generators(self) -> bool:
-        """Whether :meth:`_force_generators` has any (without building the list each step)."""
-        return bool(self.forces) or any(hasattr(j, "accumulate") for j in self.joints)
-
-    def _check_masses(self) -> None:
+    def _prepare(self, dt: float) -> None:
+        """Bring the records up to date after shapes, masses, joints, forces or settings
+        changed (not every step)."""
+        if self.rot.shape[1] != orientation.FLOATS_STORED[self.settings.orientation]:
+            self._switch_orientation(self.settings.orientation)  # changed without being told
         massless = (self.kind == DYNAMIC) & (self.mass <= 0)
         if massless.any():
             name = self.bodies[int(np.argmax(massless))].name
             raise ValueError(f"body {name!r}: a dynamic body needs shapes or a mass and moment")
-        self._has_ccd = bool(self.ccd.any())
-        self._checked = True
-
-    def _constants_changed(self) -> None:
-        self._has_constant = bool(self.const_force.any() or self.const_torque.any())
-
-    def _step_euler(self, dt: float, explicit: bool) -> None:
-        """Fast path: both Euler methods as two compiled passes around the solver (the whole
-        step in one compiled call when the settings allow, ``collision.step_euler``)."""
-        if collision.compiled(self):
-            collision.step_euler(self, dt, explicit)
-            return
-        g = self.gravity
-        args = (self.force, self.torque, self.inv_mass, self.inv_moment, g[0], g[1], dt)
-        # the velocities before this step's gravity and forces: restitution reflects the
-        # approach velocities measured with them (Box2D's prepare step)
-        start = (self.vel.copy(), self.omega.copy())
-        integrators.euler_velocities(self.kind, self.vel, self.omega, *args)
-        self.manifolds = collision.solve_velocities(self, dt, start)
-        dphi = self._dphi
-        integrators.euler_positions(
-            self.kind, self.com, self.vel, self.omega, *args, explicit, dphi
-        )
-        kind = self.orientation_kind
-        orientation.integrate_rotations(kind, self.rot, dphi, self.settings.renormalise)
-        orientation.cos_sin(kind, self.rot, self.cs)
-        if self.manifolds is not None or self.joints:
-            collision.solve_positions(self, self.manifolds, dt)
-
-    def _step_numeric(self, dt: float) -> None:
-        """Any integrator: free-motion increments, impulses in between (docs/architecture.md)."""
-        s = self.settings
-        moving = self.kind != STATIC
-        dyn = self.kind == DYNAMIC
-        phi = self.angles()
-        accel = self._accelerations(self.force, self.torque)
-        dp, dv, dphi, dw = integrators.INTEGRATORS[s.integrator](
-            self.com, self.vel, phi, self.omega, accel, dt
-        )
-        kin = self.kind == KINEMATIC  # kinematic bodies move at their own velocity
-        dp = np.where(kin[:, None], self.vel * dt, dp)
-        dphi = np.where(kin, self.omega * dt, dphi)
-        # the velocities before this step's gravity and forces: restitution reflects the
-        # approach velocities measured with them (Box2D's prepare step)
-        start = (self.vel.copy(), self.omega.copy())
-        self.vel += np.where(dyn[:, None], dv, 0.0)
-        self.omega += np.where(dyn, dw, 0.0)
-        v_free, w_free = self.vel.copy(), self.omega.copy()
-
-        self.manifolds = collision.solve_velocities(self, dt, start)
-
-        dp = dp + (self.vel - v_free) * dt
-        dphi = dphi + (self.omega - w_free) * dt
-        dp[~moving] = 0.0
-        dphi[~moving] = 0.0
-        if self._has_ccd:
-            collision.limit_ccd_motion(self, dp, dphi)
-        self.com += dp
-        orientation.integrate_rotations(self.orientation_kind, self.rot, dphi, s.renormalise)
-        orientation.cos_sin(self.orientation_kind, self.rot, self.cs)
-        self.force[:] = 0.0
-        self.torque[:] = 0.0
-        collision.solve_positions(self, self.manifolds, dt)
-
-    def _step_analytic(self, dt: float) -> None:
-        """p(t) = s + u t + a t^2 / 2, theta(t) = theta0 + omega0 t + alpha t^2 / 2 (slides)."""
-        if self.joints or self.forces:
-            raise ValueError("settings.integrator: analytic motion cannot have joints or forces")
-        if self._analytic_ref is None:
-            dyn = (self.kind == DYNAMIC)[:, None]
-            a = np.where(dyn, self.gravity + self.force * self.inv_mass[:, None], 0.0)
-            alpha = self.torque * self.inv_moment
-            self._analytic_ref = (
-                self.time,
-                self.com.copy(),
-                self.vel.copy(),
-                a,
-                self.angles(),
-                self.omega.copy(),
-                alpha,
+        self.arrays()  # geometry and buffers for the current shapes
+        n = len(self.bodies)
+        for joint in self.joints:
+            joint.place(self)
+        if len(self.joint_table):
+            keys = np.minimum(self.joint_table["a"], self.joint_table["b"]) * n + np.maximum(
+                self.joint_table["a"], self.joint_table["b"]
             )
-        t0, s0, u, a, th0, w0, alpha = self._analytic_ref
-        t = self.time + dt - t0
-        moving = self.kind != STATIC
-        self.com[moving] = (s0 + u * t + 0.5 * a * t * t)[moving]
-        self.vel[moving] = (u + a * t)[moving]
-        self.omega[moving] = (w0 + alpha * t)[moving]
-        theta = th0 + w0 * t + 0.5 * alpha * t * t
-        orientation.set_angles(self.orientation_kind, self.rot, np.where(moving, theta, th0))
-        orientation.cos_sin(self.orientation_kind, self.rot, self.cs)
-        self.manifolds = None
-        self.force[:] = 0.0
-        self.torque[:] = 0.0
+            self.joint_table["pair_key"] = keys
+            self.joint_table["sorted_key"] = np.sort(keys)
+        masks = np.zeros(n, dtype=np.uint64)
+        for g in self.forces:
+            if isinstance(g, ForceGenerator):
+                masks[g.targets(self)] |= np.uint64(1) << np.uint64(g.index)
+        self.state["generators"] = masks
+        self.has_ccd = bool(self.ccd.any())
+        s = self.settings
+        fields = len(self.generator_table) > 0 or bool(np.any(self.joint_table["kind"] == SPRING))
+        self._fast = (
+            s.broadphase == "sap"
+            and s.solver == "iterative"
+            and s.integrator in _EULERS
+            and not fields
+            and not self.has_ccd
+        )
+        fill_context(self.context[0], self.settings, self.gravity, dt)
+        self._step_dt = dt
+        self._dirty = False
+        self._choose_path()
+
+    # --- the step -----------------------------------------------------------------------------
+    def step(self, dt: float | None = None) -> None:
+        """Advance the world by ``dt`` seconds (default: the world's dt)."""
+        if dt is None:
+            dt = self.dt
+        else:
+            dt = float(dt)
+            if not dt > 0:
+                raise ValueError("dt: must be > 0")
+        if self._dirty or dt != self._step_dt:
+            self._prepare(dt)
+        for body in self._controlled:
+            body.controller(body, self)
+        if self._python_forces:
+            self._python_force_step()
+        if self._held:
+            self._held = self._buffers.release(1 - int(self.context[0]["contact_set"]))
+        status = self._run()
+        while status < 0:  # the pair buffer was too small: nothing moved yet
+            self._buffers.reserve(-status)
+            self._choose_path()
+            status = self._run()
+        self.time += dt
+        self.steps += 1
+        self._found_stats = None
+        if status > 0:
+            raise self._divergence(status - 1)
+
+    def _choose_path(self) -> None:
+        """How :meth:`step` runs the stages (after :meth:`_prepare` or a buffer grew): one
+        compiled call for the usual world (:func:`sandbox.step.fast_step`, or ``free_step``
+        when nothing can touch), the stages one by one otherwise, the closed form for
+        ``integrator: analytic``."""
+        s, g, b = self.settings, self._geometry, self._buffers
+        if s.integrator == "analytic":
+            self._run = lambda: advance_analytic(self, self._step_dt) or 0
+            return
+        fast = self._fast and self.timer is None
+        model = (self.state, self.rot, g.table, g.vertices, self.joint_table, self.generator_table)
+        if fast and len(g) < 2 and not len(self.joint_table):
+            self._run = _bind(entry(free_step, *model, self.context), *model, self.context)
+        elif fast:
+            args = (*model, b.sets, b.proxies, b.pairs, self.context)
+            self._run = _bind(entry(fast_step, *args), *args)
+        else:
+            self._run = lambda: staged_step(self, self.timer)
+
+    def _python_force_step(self) -> None:
+        """Force objects without a record add their force at the step's starting state."""
+        for g in self._python_forces:
+            g.accumulate(
+                self, self.com, self.vel, self.angles(), self.omega, self.force, self.torque
+            )
+
+    def _divergence(self, i: int) -> SimulationError:
+        """The error for body i, whose state stopped being finite, with a likely cause."""
+        from sandbox.divergence import likely_cause
+
+        return SimulationError(self.bodies[i].name, self.steps, likely_cause(self, i))
 
     # --- observation --------------------------------------------------------------------------
-    def find_contacts(self) -> list:
-        """Broadphase + narrowphase at the current state, without stepping (list of Contact)."""
-        from sandbox import collision
-        from sandbox.contact import contacts_from_manifolds
+    @property
+    def manifolds(self) -> Manifolds | None:
+        """The contacts of the last step (a view of its CONTACT records), or None before the
+        first step."""
+        if self._buffers is None or self.steps == 0:
+            return None
+        self._held = True
+        return self._buffers.manifolds(self.context[0])
 
-        manifolds = collision.detect(self, margin=0.0)
-        return contacts_from_manifolds(manifolds, self.bodies)
+    @property
+    def stats(self) -> dict:
+        """Counters from the last step or :meth:`find_contacts`: ``pair_tests``, ``pairs``,
+        ``contacts``, ``contact_points``, ``warm_started_points`` (and ``shock_layers``)."""
+        if self._found_stats is not None:
+            return dict(self._found_stats)
+        if self.steps == 0:
+            return {}
+        ctx = self.context[0]
+        keys = ["pair_tests", "pairs", "contacts", "contact_points", "warm_started_points"]
+        if self.settings.solver == "shock":
+            keys.append("shock_layers")
+        return {key: int(ctx[key]) for key in keys}
+
+    def find_contacts(self) -> list:
+        """Broadphase + narrowphase at the current state, without stepping (list of Contact);
+        also fills :attr:`stats` (see :func:`sandbox.contact.find_contacts`)."""
+        if self._dirty:
+            self._prepare(self.dt)
+        contacts, self._found_stats = find_contacts(self)
+        return contacts
 
     def kinetic_energy(self) -> float:
         """Sum of m |v|^2 / 2 + I omega^2 / 2 over dynamic bodies (J)."""
@@ -401,9 +455,14 @@ class World:
 
     def to_scene(self) -> dict:
         """The world as a scene-file dict (current state as the initial state)."""
-        from sandbox.build import world_to_scene
+        from sandbox.scene_export import world_to_scene
 
         return world_to_scene(self)
 
     def __repr__(self) -> str:
         return f"World({self.name!r}, {len(self.bodies)} bodies, t={self.time:.4f})"
+
+
+def _bind(function, *args):
+    """``function`` with ``args`` bound: a call with no arguments of its own."""
+    return lambda: function(*args)

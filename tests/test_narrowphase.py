@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from sandbox.contact import Contact, Manifolds, contacts_from_manifolds
 from sandbox.geometry import box_vertices, edge_normals, make_ccw
 from sandbox.narrowphase import collide
+from sandbox.records import BODY, SHAPE, VERTEX
 
 TOL = 1e-12  # exact arithmetic up to round-off
 
@@ -58,20 +59,17 @@ def scene(*bodies):
                 nv += len(v)
     v = np.concatenate(verts) if verts else np.zeros((0, 2))
     n = np.concatenate([edge_normals(x) for x in verts]) if verts else np.zeros((0, 2))
-    return {
-        "shape_body": np.array(body, dtype=np.int64),
-        "shape_kind": np.array(kind, dtype=np.int64),
-        "shape_radius": np.array(radius, dtype=float),
-        "shape_center": np.array(center, dtype=float).reshape(-1, 2),
-        "shape_vstart": np.array(vstart, dtype=np.int64),
-        "shape_vcount": np.array(vcount, dtype=np.int64),
-        "verts": v,
-        "normals": n,
-        "shape_friction": np.array(mu, dtype=float),
-        "shape_restitution": np.array(e, dtype=float),
-        "com": np.array(com, dtype=float),
-        "cs": np.array(cs, dtype=float),
-    }
+    shapes = np.zeros(len(body), dtype=SHAPE)
+    shapes["body"], shapes["kind"], shapes["radius"] = body, kind, radius
+    shapes["center"] = np.array(center, dtype=float).reshape(-1, 2)
+    shapes["first_vertex"], shapes["vertex_count"] = vstart, vcount
+    shapes["friction"], shapes["restitution"] = mu, e
+    shapes["bound"] = np.inf  # no bounding-circle test
+    vertices = np.zeros(len(v), dtype=VERTEX)
+    vertices["point"], vertices["normal"] = v, n
+    records = np.zeros(len(com), dtype=BODY)
+    records["com"], records["cs"] = com, cs
+    return {"shapes": shapes, "vertices": vertices, "bodies": records}
 
 
 def run(arrays, pairs=((0, 1),), margin=0.0) -> Manifolds:
@@ -279,7 +277,7 @@ def test_feature_ids_stable_under_small_perturbation():
 def test_contacts_from_manifolds():
     arrays = scene(GROUND, ((0.3, 1.4), 0.0, [box(1.0, 1.0)]))
     m = run(arrays)
-    m.normal_impulse[0] = [1.5, 2.5]
+    m.records["points"]["normal_impulse"][0] = [1.5, 2.5]
     contacts = contacts_from_manifolds(m, ["ground", "box"])
     assert len(contacts) == 1 and isinstance(contacts[0], Contact)
     c = contacts[0]

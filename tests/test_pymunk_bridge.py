@@ -2,14 +2,15 @@
 
 import math
 
+import numpy as np
 import pytest
 
+from sandbox.buoyancy import polygon_area_centroid
 from sandbox.pymunk_bridge import (
     BridgeError,
     PymunkScene,
     circle_submerged,
-    clip_below,
-    polygon_area_centroid,
+    polygon_submerged,
     run_pymunk,
     wrap_angle,
 )
@@ -294,9 +295,10 @@ def test_submerged_geometry():
     assert circle_submerged(0.0, 0.0, r, 3.0)[0] == pytest.approx(math.pi * r * r, rel=1e-12)
     assert circle_submerged(0.0, 0.0, r, -3.0)[0] == 0.0
     square = [(0, 0), (2, 0), (2, 2), (0, 2)]
-    area, x, y = polygon_area_centroid(clip_below(square, 0.5))
+    area, x, y = polygon_submerged(np.array(square, dtype=float), 0.5)
     assert (area, x, y) == pytest.approx((1.0, 1.0, 0.25), abs=1e-12)
-    assert polygon_area_centroid(square[::-1]) == pytest.approx((4.0, 1.0, 1.0), abs=1e-12)
+    flipped = np.array(square[::-1], dtype=float)
+    assert polygon_area_centroid(flipped, 4) == pytest.approx((4.0, 1.0, 1.0), abs=1e-12)
 
 
 def test_buoyancy_floats_at_density_ratio():

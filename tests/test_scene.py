@@ -15,6 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sandbox.atomic import atomic_write, atomic_write_bytes, atomic_write_text
+from sandbox.fieldspec import LENGTH, POSITION
 from sandbox.geometry import box_vertices, rotation, signed_area
 from sandbox.scene import (
     SceneError,
@@ -350,7 +351,9 @@ def test_validation_never_mutates_and_shares_nothing():
 
 @settings(max_examples=50, deadline=None, derandomize=True)
 @given(
-    st.floats(allow_nan=False, allow_infinity=False), st.floats(min_value=1e-300, max_value=1e300)
+    # every number in the documented ranges (positions, radii) survives, bit for bit
+    st.floats(min_value=POSITION.lo, max_value=POSITION.hi),
+    st.floats(min_value=LENGTH.lo, max_value=LENGTH.hi),
 )
 def test_numbers_round_trip_bit_identical(x, r):
     scene = {"bodies": [{"position": [x, -x], "shapes": [{"type": "circle", "radius": r}]}]}

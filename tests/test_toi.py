@@ -7,13 +7,12 @@ advancement's own stopping tolerance, stated next to each assertion."""
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from sandbox.geometry import box_vertices
-from sandbox.toi import ccd_fractions, distance, limit_motion, swept_pairs, time_of_impact
+from sandbox.toi import ccd_fractions, distance, limit_ccd_motion, swept_pairs, time_of_impact
 
 DT = 1.0 / 60.0
 NOVERTS = np.zeros((0, 2))
@@ -33,12 +32,12 @@ def p(x, y):
 
 
 def dist(a, pa, ta, b, pb, tb):
-    return distance(*a, p(*pa), ta, *b, p(*pb), tb)
+    return distance(a, (p(*pa), ta), b, (p(*pb), tb))
 
 
 def toi(a, pa0, ta0, pa1, ta1, b, pb0, tb0, pb1, tb1, target=0.0, tol=1e-6):
     return time_of_impact(
-        *a, p(*pa0), ta0, p(*pa1), ta1, *b, p(*pb0), tb0, p(*pb1), tb1, target, tol, 64
+        a, (p(*pa0), ta0, p(*pa1), ta1), b, (p(*pb0), tb0, p(*pb1), tb1), target, tol
     )
 
 
@@ -132,91 +131,30 @@ def test_spinning_box_is_conservative():
 # --- world level -----------------------------------------------------------------------------
 
 
-def flat(shapes):
-    """(body, shape tuple) list -> the flattened shape arrays."""
-    body, kind, radius, center, vstart, vcount, verts = ([] for _ in range(7))
-    nv = 0
-    for b, (k, r, c, v) in shapes:
-        body.append(b)
-        kind.append(k)
-        radius.append(r)
-        center.append(c)
-        vstart.append(nv)
-        vcount.append(len(v))
-        if len(v):
-            verts.append(v)
-            nv += len(v)
-    bound = [np.hypot(*c) + r if k == 0 else np.max(np.hypot(*v.T)) for _, (k, r, c, v) in shapes]
-    return SimpleNamespace(
-        shape_body=np.array(body, dtype=np.int64),
-        shape_kind=np.array(kind, dtype=np.int64),
-        shape_radius=np.array(radius),
-        shape_center=np.array(center),
-        shape_vstart=np.array(vstart, dtype=np.int64),
-        shape_vcount=np.array(vcount, dtype=np.int64),
-        verts=np.concatenate(verts),
-        shape_bound=np.array(bound),
-    )
-
-
-class _Geometry(SimpleNamespace):
-    """Stand-in for the world's flattened geometry (only what ``limit_motion`` reads)."""
-
-    def __init__(self, g):
-        super().__init__(**vars(g))
-
-    def __len__(self):
-        return len(self.shape_body)
-
-
 def test_ccd_fractions_and_limit_motion():
     # body 0: static thin wall at x = 0; body 1: ccd bullet r = 0.05 from x = -1 at 200 m/s;
     # body 2: a ball resting on the wall's top (touching at t = 0) moving down into it;
     # body 3: a slow ball far away
-    g = flat(
-        [
-            (0, box(0.02, 2.0)),
-            (1, circle(0.05)),
-            (2, circle(0.1)),
-            (3, circle(0.1)),
-        ]
-    )
-    com0 = np.array([[0.0, 0.0], [-1.0, 0.0], [0.0, 1.1], [5.0, 5.0]])
+    from sandbox import Body, Box, Circle, World
+
+    world = World(contact_margin=0.02)  # target separation 0.005, tolerance 0.00125
+    world.add_body(Body("wall", type="static")).add_shape(Box(0.02, 2.0))
+    world.add_body(Body("bullet", position=(-1.0, 0.0), ccd=True)).add_shape(Circle(0.05))
+    world.add_body(Body("rest", position=(0.0, 1.1), ccd=True)).add_shape(Circle(0.1))
+    world.add_body(Body("far", position=(5.0, 5.0), ccd=True)).add_shape(Circle(0.1))
+    world._prepare(DT)
     dp = np.array([[0.0, 0.0], [200.0 * DT, 0.0], [0.0, -0.1], [0.1, 0.0]])
-    angle0, dphi = np.zeros(4), np.zeros(4)
-    ccd = np.array([False, True, True, True])
-    pairs = swept_pairs(ccd, com0, com0 + dp, g.shape_body, g.shape_bound)
+    bodies, g = world.state, world.geometry()
+    bodies["motion"] = dp
+    pairs = swept_pairs(bodies, g.table)
     assert [tuple(x) for x in pairs] == [(0, 1), (0, 2)]  # (1, 2): swept boxes do not meet
-    frac = ccd_fractions(
-        ccd,
-        com0,
-        angle0,
-        com0 + dp,
-        angle0 + dphi,
-        g.shape_body,
-        g.shape_kind,
-        g.shape_radius,
-        g.shape_center,
-        g.shape_vstart,
-        g.shape_vcount,
-        g.verts,
-        pairs,
-        0.005,
-        0.00125,
-    )
+    frac = ccd_fractions(bodies, g.table, g.vertices, pairs, 0.005, 0.00125)
     # bullet: stops 0.005 short of the wall, gap (0.94 - 0.005) over 3.333 m of motion
     assert abs(frac[1] - (0.94 - 0.005) / (200.0 * DT)) < 0.00125 / (200.0 * DT) + 1e-12
     assert frac[0] == 1.0 and frac[2] == 1.0 and frac[3] == 1.0  # resting ball is not frozen
 
-    world = SimpleNamespace(
-        com=com0.copy(),
-        ccd=ccd,
-        settings=SimpleNamespace(contact_margin=0.02),  # target separation 0.005, tol 0.00125
-        geometry=lambda: _Geometry(g),
-        angles=lambda: angle0,
-    )
-    step, turn = dp.copy(), dphi.copy()
-    limit_motion(world, step, turn)
+    limit_ccd_motion(bodies, g.table, g.vertices, world.context)
+    step = bodies["motion"]
     np.testing.assert_allclose(step[[0, 2, 3]], dp[[0, 2, 3]], atol=0)
     gap = -0.01 - (-1.0 + step[1, 0] + 0.05)  # wall face x = -0.01, bullet front x + 0.05
     assert 0.005 <= gap < 0.00625 + 1e-12

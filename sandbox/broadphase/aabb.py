@@ -14,21 +14,52 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox.geometry_arrays import (
-    P_X,
-    P_Y,
-    S_BODY,
-    S_CX,
-    S_CY,
-    S_KIND,
-    S_RADIUS,
-    S_VCOUNT,
-    S_VSTART,
-)
 from sandbox.jit import njit
+from sandbox.math2d import rotate
+from sandbox.records import BODY, CIRCLE, SHAPE, VERTEX
 
 
 @njit
+def shape_box(shape, vertices, body, margin: float) -> tuple[float, float, float, float]:
+    """The world AABB ``(xmin, ymin, xmax, ymax)`` of one shape record, grown by ``margin`` (m).
+
+    A body-frame point q (about the centre of mass) lies at ``com + R(cs) q``. Circles: centre
+    +- radius. Polygons: the extremes of the turned vertices.
+    """
+    c, s = body["cs"][0], body["cs"][1]
+    px, py = body["com"][0], body["com"][1]
+    grow = shape["radius"] + margin
+    if shape["kind"] == CIRCLE:
+        x, y = rotate(c, s, shape["center"][0], shape["center"][1])
+        return px + x - grow, py + y - grow, px + x + grow, py + y + grow
+    x0 = y0 = np.inf
+    x1 = y1 = -np.inf
+    first = shape["first_vertex"]
+    for v in range(first, first + shape["vertex_count"]):
+        q = vertices[v]["point"]
+        x, y = rotate(c, s, q[0], q[1])
+        x0, y0 = min(x0, px + x), min(y0, py + y)
+        x1, y1 = max(x1, px + x), max(y1, py + y)
+    return x0 - grow, y0 - grow, x1 + grow, y1 + grow
+
+
+@njit
+def aabbs_into(shapes, vertices, bodies, margin: float, out) -> None:
+    """Every shape's AABB into ``out`` (m, 4) ``[xmin, ymin, xmax, ymax]``."""
+    for k in range(shapes.shape[0]):
+        box = shape_box(shapes[k], vertices, bodies[shapes[k]["body"]], margin)
+        out[k, 0], out[k, 1], out[k, 2], out[k, 3] = box
+
+
+@njit
+def proxy_boxes(shapes, vertices, bodies, margin: float, proxies) -> None:
+    """Every shape's AABB into ``proxies["aabb"]`` (the step's broadphase scratch)."""
+    for k in range(shapes.shape[0]):
+        box = shape_box(shapes[k], vertices, bodies[shapes[k]["body"]], margin)
+        a = proxies[k]["aabb"]
+        a[0], a[1], a[2], a[3] = box
+
+
 def shape_aabbs(
     shape_body: np.ndarray,
     shape_kind: np.ndarray,
@@ -39,85 +70,23 @@ def shape_aabbs(
     verts: np.ndarray,
     com: np.ndarray,
     cs: np.ndarray,
-    margin: float,
+    margin: float = 0.0,
 ) -> np.ndarray:
-    """World AABBs ``(m, 4)`` ``[xmin, ymin, xmax, ymax]`` of all shapes, grown by ``margin`` (m).
-
-    Geometry is relative to the owning body's centre of mass in the body frame; a body-frame
-    point ``q`` of body ``b`` lies at ``com[b] + R(cs[b]) q`` with ``R(c, s) = [[c, -s], [s, c]]``.
-    Circles (kind 0): centre +- radius. Polygons (kind 1): the extremes of the turned vertices,
-    grown by ``shape_radius`` as well (0 for plain polygons).
-    """
-    m = shape_body.shape[0]
+    """World AABBs ``(m, 4)`` of shapes given as flat arrays (geometry about each body's centre
+    of mass, body frame; ``com`` (n, 2) and ``cs`` (n, 2) = (cos, sin) place the bodies), grown
+    by ``margin`` (m): :func:`shape_box` for each, for lessons and tests without a world."""
+    m = len(shape_body)
+    shapes = np.zeros(m, dtype=SHAPE)
+    shapes["body"], shapes["kind"], shapes["radius"] = shape_body, shape_kind, shape_radius
+    shapes["center"] = np.reshape(shape_center, (-1, 2))
+    shapes["first_vertex"], shapes["vertex_count"] = shape_vstart, shape_vcount
+    vertices = np.zeros(len(verts), dtype=VERTEX)
+    vertices["point"] = np.reshape(verts, (-1, 2))
+    bodies = np.zeros(len(com), dtype=BODY)
+    bodies["com"], bodies["cs"] = com, cs
     out = np.empty((m, 4))
-    for k in range(m):
-        b = shape_body[k]
-        c, s = cs[b, 0], cs[b, 1]
-        px, py = com[b, 0], com[b, 1]
-        grow = shape_radius[k] + margin
-        if shape_kind[k] == 0:
-            qx, qy = shape_center[k, 0], shape_center[k, 1]
-            x = px + c * qx - s * qy
-            y = py + s * qx + c * qy
-            out[k, 0] = x - grow
-            out[k, 1] = y - grow
-            out[k, 2] = x + grow
-            out[k, 3] = y + grow
-        else:
-            x0 = np.inf
-            y0 = np.inf
-            x1 = -np.inf
-            y1 = -np.inf
-            for v in range(shape_vstart[k], shape_vstart[k] + shape_vcount[k]):
-                qx, qy = verts[v, 0], verts[v, 1]
-                x = px + c * qx - s * qy
-                y = py + s * qx + c * qy
-                x0 = min(x0, x)
-                y0 = min(y0, y)
-                x1 = max(x1, x)
-                y1 = max(y1, y)
-            out[k, 0] = x0 - grow
-            out[k, 1] = y0 - grow
-            out[k, 2] = x1 + grow
-            out[k, 3] = y1 + grow
+    aabbs_into(shapes, vertices, bodies, float(margin), out)
     return out
-
-
-@njit
-def shape_aabbs_into(shape_int, shape_float, poly, com, cs, margin, out) -> None:
-    """:func:`shape_aabbs` on the packed shape arrays (``sandbox.geometry_arrays``), written
-    into ``out`` (m, 4) (the world's step reuses one array)."""
-    for k in range(shape_int.shape[0]):
-        b = shape_int[k, S_BODY]
-        c, s = cs[b, 0], cs[b, 1]
-        px, py = com[b, 0], com[b, 1]
-        grow = shape_float[k, S_RADIUS] + margin
-        if shape_int[k, S_KIND] == 0:
-            qx, qy = shape_float[k, S_CX], shape_float[k, S_CY]
-            x = px + c * qx - s * qy
-            y = py + s * qx + c * qy
-            out[k, 0] = x - grow
-            out[k, 1] = y - grow
-            out[k, 2] = x + grow
-            out[k, 3] = y + grow
-        else:
-            x0 = np.inf
-            y0 = np.inf
-            x1 = -np.inf
-            y1 = -np.inf
-            v0 = shape_int[k, S_VSTART]
-            for v in range(v0, v0 + shape_int[k, S_VCOUNT]):
-                qx, qy = poly[v, P_X], poly[v, P_Y]
-                x = px + c * qx - s * qy
-                y = py + s * qx + c * qy
-                x0 = min(x0, x)
-                y0 = min(y0, y)
-                x1 = max(x1, x)
-                y1 = max(y1, y)
-            out[k, 0] = x0 - grow
-            out[k, 1] = y0 - grow
-            out[k, 2] = x1 + grow
-            out[k, 3] = y1 + grow
 
 
 def swept_aabbs(aabb0: np.ndarray, aabb1: np.ndarray) -> np.ndarray:

@@ -20,44 +20,50 @@ import numpy as np
 
 from sandbox.broadphase.aabb import put_pair, sort_pairs
 from sandbox.jit import njit
+from sandbox.records import PROXY
 
 
 @njit
-def sweep_axis(aabb: np.ndarray) -> int:
+def sweep_axis(proxies) -> int:
     """0 (x) or 1 (y): the axis of larger variance of the box centres (x on a tie)."""
-    m = aabb.shape[0]
+    m = proxies.shape[0]
     if m < 2:
         return 0
     sx = 0.0
     sy = 0.0
     for i in range(m):
-        sx += aabb[i, 0] + aabb[i, 2]
-        sy += aabb[i, 1] + aabb[i, 3]
+        a = proxies[i]["aabb"]
+        sx += a[0] + a[2]
+        sy += a[1] + a[3]
     mx = 0.5 * sx / m
     my = 0.5 * sy / m
     vx = 0.0
     vy = 0.0
     for i in range(m):
-        dx = 0.5 * (aabb[i, 0] + aabb[i, 2]) - mx
-        dy = 0.5 * (aabb[i, 1] + aabb[i, 3]) - my
+        a = proxies[i]["aabb"]
+        dx = 0.5 * (a[0] + a[2]) - mx
+        dy = 0.5 * (a[1] + a[3]) - my
         vx += dx * dx
         vy += dy * dy
     return 1 if vy > vx else 0
 
 
 @njit
-def gather(aabb, static, body, order, box, meta) -> None:
-    """Copy the boxes into sweep order: ``box[s]`` is the AABB of shape ``order[s]`` and
-    ``meta[s]`` its (index, body, static). The sweep then reads memory front to back instead of
-    jumping around ``aabb`` (several times faster for thousands of shapes)."""
-    for s in range(order.shape[0]):
-        i = order[s]
-        box[s, 0], box[s, 1], box[s, 2], box[s, 3] = aabb[i, 0], aabb[i, 1], aabb[i, 2], aabb[i, 3]
-        meta[s, 0], meta[s, 1], meta[s, 2] = i, body[i], static[i]
+def gather(proxies) -> None:
+    """Copy the boxes into sweep order: place s gets the box, body and fixed flag of shape
+    ``proxies[s]["order"]``. The sweep then reads memory front to back instead of jumping
+    around (several times faster for thousands of shapes)."""
+    for s in range(proxies.shape[0]):
+        p = proxies[s]
+        src = proxies[p["order"]]
+        box, a = p["sweep_box"], src["aabb"]
+        box[0], box[1], box[2], box[3] = a[0], a[1], a[2], a[3]
+        p["sweep_body"] = src["body"]
+        p["sweep_fixed"] = src["fixed"]
 
 
 @njit
-def sap_kernel(box, meta, axis, buf):
+def sap_kernel(proxies, axis, buf):
     """``(k pairs, pair_tests)`` sweeping along ``axis`` (0 x, 1 y) over boxes already in sweep
     order (:func:`gather`); the pairs are written to ``buf`` as far as they fit.
 
@@ -67,24 +73,27 @@ def sap_kernel(box, meta, axis, buf):
     (which is as good as random, so the processor would guess it wrong half the time): every
     candidate is written at the end of the pair list, which then grows by 1 or 0.
     """
-    m = box.shape[0]
+    m = proxies.shape[0]
     other = 1 - axis
     k = 0
     tests = 0
     nb = buf.shape[0]
     for s in range(m):
-        hi = box[s, axis + 2]
-        i, body_i, static_i = meta[s, 0], meta[s, 1], meta[s, 2]
-        lo_o, hi_o = box[s, other], box[s, other + 2]
+        p = proxies[s]
+        hi = p["sweep_box"][axis + 2]
+        i, body_i, fixed_i = p["order"], p["sweep_body"], p["sweep_fixed"]
+        lo_o, hi_o = p["sweep_box"][other], p["sweep_box"][other + 2]
         first = k
         for r in range(s + 1, m):
-            if box[r, axis] > hi:
+            q = proxies[r]
+            box = q["sweep_box"]
+            if box[axis] > hi:
                 break  # sorted by lo: nothing further along can reach box s
-            # not one body, not both static (aabb.skip_pair): one test
-            tested = (meta[r, 1] != body_i) & ((static_i & meta[r, 2]) == 0)
-            hit = tested & (box[r, other] <= hi_o) & (lo_o <= box[r, other + 2])
+            # not one body, not both fixed (aabb.skip_pair): one test
+            tested = (q["sweep_body"] != body_i) & ((fixed_i & q["sweep_fixed"]) == 0)
+            hit = tested & (box[other] <= hi_o) & (lo_o <= box[other + 2])
             if k < nb:
-                buf[k, 1] = meta[r, 0]
+                buf[k, 1] = q["order"]
             k += hit
             tests += tested
         for q in range(first, min(k, nb)):  # the pairs (i, j) of box s, with i < j
@@ -94,45 +103,48 @@ def sap_kernel(box, meta, axis, buf):
 
 
 @njit
-def tested_pairs(box, meta, axis, tested) -> None:
+def tested_pairs(proxies, axis, tested) -> None:
     """The pairs :func:`sap_kernel` tests, in its order, written to ``tested`` (for drawing
     and counting; as far as they fit)."""
-    m = box.shape[0]
+    m = proxies.shape[0]
     t = 0
     for s in range(m):
-        hi = box[s, axis + 2]
+        p = proxies[s]
+        hi = p["sweep_box"][axis + 2]
         for r in range(s + 1, m):
-            if box[r, axis] > hi:
+            q = proxies[r]
+            if q["sweep_box"][axis] > hi:
                 break
-            if meta[r, 1] == meta[s, 1] or (meta[s, 2] and meta[r, 2]):
+            if q["sweep_body"] == p["sweep_body"] or (p["sweep_fixed"] and q["sweep_fixed"]):
                 continue
-            put_pair(tested, t, meta[s, 0], meta[r, 0])
+            put_pair(tested, t, p["order"], q["order"])
             t += 1
 
 
 @njit
-def update_order(aabb, axis, order, sorted_axis) -> None:
-    """Sort ``order`` (shape indices) by (lower end on ``axis``, index) in place.
+def update_order(proxies, axis, sorted_axis) -> None:
+    """Sort the sweep order ``proxies["order"]`` by (lower end on ``axis``, shape index).
 
     Bodies move little between steps, so last step's order is nearly sorted and an insertion
     sort finishes in about O(m) (incremental sort and sweep). When the order was kept for the
     other axis (``sorted_axis``), or the insertion sort has moved too much, a full stable sort
     takes over.
     """
-    m = order.shape[0]
+    m = proxies.shape[0]
     if sorted_axis == axis:
         budget = 8 * m + 64  # shifts allowed before a full sort is cheaper
         for s in range(1, m):
-            i = order[s]
-            lo = aabb[i, axis]
+            i = proxies[s]["order"]
+            lo = proxies[i]["aabb"][axis]
             r = s - 1
             while r >= 0:
-                j = order[r]
-                if aabb[j, axis] < lo or (aabb[j, axis] == lo and j < i):
+                j = proxies[r]["order"]
+                lo_j = proxies[j]["aabb"][axis]
+                if lo_j < lo or (lo_j == lo and j < i):
                     break
-                order[r + 1] = j
+                proxies[r + 1]["order"] = j
                 r -= 1
-            order[r + 1] = i
+            proxies[r + 1]["order"] = i
             budget -= s - 1 - r
             if budget < 0:
                 break
@@ -140,8 +152,29 @@ def update_order(aabb, axis, order, sorted_axis) -> None:
             return
     keys = np.empty(m)
     for i in range(m):
-        keys[i] = aabb[i, axis]
-    order[:] = np.argsort(keys, kind="mergesort")  # stable: ties in index order
+        keys[i] = proxies[i]["aabb"][axis]
+    order = np.argsort(keys, kind="mergesort")  # stable: ties in index order
+    for s in range(m):
+        proxies[s]["order"] = order[s]
+
+
+@njit
+def sweep(proxies, sorted_axis: int, buf):
+    """One sweep of the step: choose the axis, bring the kept order up to date, copy the boxes
+    into it and sweep. Returns ``(axis, k pairs, pair_tests)``; pairs in ``buf`` as far as they
+    fit (as :func:`sap_kernel`)."""
+    axis = sweep_axis(proxies)
+    update_order(proxies, axis, sorted_axis)
+    gather(proxies)
+    k, tests = sap_kernel(proxies, axis, buf)
+    return axis, k, tests
+
+
+def proxies_of(aabb: np.ndarray, static: np.ndarray, body: np.ndarray) -> np.ndarray:
+    """PROXY records for plain arrays: boxes (m, 4), a fixed flag and a body per shape."""
+    proxies = np.zeros(len(aabb), dtype=PROXY)
+    proxies["aabb"], proxies["fixed"], proxies["body"] = aabb, static, body
+    return proxies
 
 
 def find(
@@ -152,31 +185,32 @@ def find(
     axis: int | None = None,
 ):
     """``(pairs, pair_tests, tested)``; ``axis`` (0 or 1) defaults to :func:`sweep_axis`."""
-    a = sweep_axis(aabb) if axis is None else int(axis)
+    proxies = proxies_of(aabb, static, body)
+    a = sweep_axis(proxies) if axis is None else int(axis)
     if a not in (0, 1):
         raise ValueError(f"sap axis must be 0 (x) or 1 (y), got {axis!r}")
-    # numpy's sort is several times faster than numba's for thousands of keys; the pair list
-    # does not depend on how ties are ordered, the stable sort just keeps runs reproducible
     m = len(aabb)
-    order = np.argsort(aabb[:, a], kind="stable")
-    box = np.empty((m, 4))
-    meta = np.empty((m, 3), dtype=np.int64)
-    gather(aabb, static, body, order, box, meta)
+    update_order(proxies, a, -1)
+    gather(proxies)
     buf = np.empty((4 * m + 64, 2), dtype=np.int64)
-    k, tests = sap_kernel(box, meta, a, buf)
+    k, tests = sap_kernel(proxies, a, buf)
     if k > len(buf):
         buf = np.empty((k, 2), dtype=np.int64)
-        k, tests = sap_kernel(box, meta, a, buf)
+        k, tests = sap_kernel(proxies, a, buf)
     tested = np.empty((tests if record else 0, 2), dtype=np.int64)
     if record:
-        tested_pairs(box, meta, a, tested)
+        tested_pairs(proxies, a, tested)
     return sort_pairs(buf, k, m), int(tests), tested
 
 
 def describe(aabb: np.ndarray, axis: int | None = None) -> dict:
     """The sweep for drawing: ``axis``, ``order`` (shapes sorted by ``lo``) and ``intervals``
     (m, 2) ``[lo, hi]`` of each shape on the sweep axis."""
-    a = sweep_axis(aabb) if axis is None else int(axis)
+    a = (
+        sweep_axis(proxies_of(aabb, np.zeros(len(aabb)), np.arange(len(aabb))))
+        if axis is None
+        else int(axis)
+    )
     intervals = np.ascontiguousarray(aabb[:, [a, a + 2]])
     order = np.argsort(intervals[:, 0], kind="stable")
     return {"axis": a, "order": order, "intervals": intervals}

@@ -1,4 +1,4 @@
-"""The command line: ``sandbox simulate | compare | lessons`` (also ``python -m sandbox``).
+"""The command line: ``sandbox simulate | compare | lessons | schema`` (also ``python -m sandbox``).
 
 One module per command (``sandbox/cli/<command>.py``, each with ``add_parser`` and ``run``);
 this one assembles the parser, and :mod:`sandbox.cli.exits` turns every way a command can end
@@ -16,19 +16,36 @@ from __future__ import annotations
 import argparse
 import sys
 
-from sandbox.cli import compare, lessons, simulate
+from sandbox.cli import compare, lessons, schema, simulate
 from sandbox.cli.common import CliError, Parser, settle_matplotlib_config
 from sandbox.cli.exits import run_command
 
-COMMANDS = (simulate, compare, lessons)
+COMMANDS = (simulate, compare, lessons, schema)
+
+EXAMPLES = """examples:
+  sandbox simulate scenes/drop.json --steps 240 --gif drop.gif
+  sandbox compare scenes/stack.json --vary warm_start=false --out stack/
+  sandbox lessons 01 07
+  sandbox schema > scene.schema.json
+
+sandbox COMMAND --help shows each command's options and examples."""
 
 __all__ = ["CliError", "build_parser", "main"]
 
 
 def build_parser() -> argparse.ArgumentParser:
     """The ``sandbox`` parser with every command."""
-    parser = Parser(prog="sandbox", description="A 2D physics sandbox for teaching.")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    from sandbox import __version__
+
+    parser = Parser(
+        prog="sandbox",
+        description="A 2D physics sandbox for teaching.",
+        epilog=EXAMPLES,
+    )
+    parser.add_argument("--version", action="version", version=f"sandbox {__version__}")
+    sub = parser.add_subparsers(
+        dest="command", required=True, parser_class=Parser, metavar="COMMAND"
+    )
     for command in COMMANDS:
         command.add_parser(sub)
     return parser
@@ -38,7 +55,10 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit status (0 done, 1 run failed, 2 bad input, 130 Ctrl-C)."""
 
     def command() -> int:
-        args = build_parser().parse_args(argv)
+        try:
+            args = build_parser().parse_args(argv)
+        except SystemExit as done:  # --help and --version print, then stop here
+            return int(done.code or 0)
         settle_matplotlib_config()
         return args.func(args)
 

@@ -1,21 +1,20 @@
-"""What every command shares: the one-line error, the argument parser, reading a scene."""
+"""What every command shares: the one-line error, the argument parser (defaults in ``--help``,
+a did-you-mean for a mistyped option), checked numbers, ``--set KEY=VALUE``, reading a scene."""
 
 from __future__ import annotations
 
 import argparse
 import contextlib
-import math
+import difflib
 import os
 import sys
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
+from sandbox.fieldspec import TIME_STEP, Field, check_value
+from sandbox.scene_fields import SceneError
 from sandbox.settings import CHOICES
-
-MAX_STEPS = 10_000_000  # simulate: a trace of this many steps of one body is about 1 GB
-FPS_RANGE = (0.1, 50.0)  # GIF frames per second: a GIF's delay is in 1/100 s, and browsers
-# show frames shorter than 2/100 s at 1/10 s instead
 
 
 class CliError(ValueError):
@@ -26,77 +25,119 @@ class CliError(ValueError):
         self.path, self.message = path, message
 
 
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """``--help`` shows each option's default and keeps the examples' line breaks."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        default = action.default
+        shown = default not in (None, False, [], argparse.SUPPRESS) and action.option_strings
+        if shown and "%(default)" not in text and "default:" not in text:
+            text += " (default: %(default)s)"
+        return text
+
+
 class Parser(argparse.ArgumentParser):
-    """An argument parser whose errors are one :class:`CliError` instead of usage + message."""
+    """An argument parser whose errors are one :class:`CliError` instead of usage + message,
+    with a did-you-mean for a mistyped option or command."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str):
+        if message.startswith("unrecognized arguments: "):
+            unknown = message[len("unrecognized arguments: ") :].split()
+            flag = next((u for u in unknown if u.startswith("-")), unknown[0])
+            option = flag.split("=", 1)[0]
+            hint = _close(option, self._known_options())
+            raise CliError(option, f"unknown option{hint}")
         if message.startswith("argument "):
             message = message[len("argument ") :]
             name, _, rest = message.partition(": ")
+            if rest.startswith("invalid choice: "):
+                given = rest[len("invalid choice: ") :].split(" (choose", 1)[0].strip("'")
+                choices = rest.partition("(choose from ")[2].rstrip(")").replace("'", "")
+                rest += _close(given, [c.strip() for c in choices.split(",")])
             raise CliError(name.split("/")[-1], rest)
         raise CliError("arguments", message)
 
-
-def positive_int(text: str) -> int:
-    """A whole number >= 0."""
-    try:
-        value = int(text)
-    except ValueError:
-        shown = text if len(text) <= 30 else text[:27] + "..."
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {shown!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
-    return value
+    def _known_options(self) -> list[str]:
+        """Every option string of this parser and of its commands."""
+        options: list[str] = []
+        for action in self._actions:
+            options += [o for o in action.option_strings if o.startswith("--")]
+            if isinstance(action, argparse._SubParsersAction):
+                for sub in action.choices.values():
+                    options += sub._known_options()
+        return options
 
 
-def steps_count(limit: int):
-    """An argument type: a whole number of steps from 0 to ``limit``."""
-
-    def steps(text: str) -> int:
-        value = positive_int(text)
-        if value > limit:
-            raise argparse.ArgumentTypeError(f"must be at most {limit:,}, got {value:,}")
-        return value
-
-    steps.__name__ = "steps"
-    return steps
+def _close(word: str, options: list[str]) -> str:
+    """`` (did you mean --steps?)`` for the closest option, or nothing."""
+    match = difflib.get_close_matches(word, options, n=1, cutoff=0.6)
+    return f" (did you mean {match[0]}?)" if match else ""
 
 
-def positive_float(text: str) -> float:
-    """A finite number > 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
-    return value
+def field_type(field: Field, option: str):
+    """An argparse ``type`` that checks command-line text against ``field`` (range, unit)."""
+
+    def convert(text: str):
+        try:
+            value: object = int(text) if field.kind == "integer" else float(text)
+        except ValueError:
+            value = text  # the check says what was expected
+        try:
+            return check_value(field, value, option)
+        except SceneError as err:
+            raise argparse.ArgumentTypeError(err.message) from None
+
+    convert.__name__ = field.name  # argparse names the type in some messages
+    return convert
 
 
-def fps_value(text: str) -> float:
-    """GIF frames per second, within :data:`FPS_RANGE`."""
-    value = positive_float(text)
-    lo, hi = FPS_RANGE
-    if not lo <= value <= hi:
-        raise argparse.ArgumentTypeError(
-            f"must be from {lo:g} to {hi:g} frames per second, got {text}"
-        )
-    return value
+# the command line's own numbers, with their ranges (the scene's dt is the scene field's)
+STEPS = Field("steps", "integer", "number of steps", 300, "", lo=0, hi=10_000_000)
+FPS = Field("fps", "number", "GIF frames per second", 30.0, "frames/s", gt=0.0, lo=0.1, hi=100)
+DT = Field(
+    "dt",
+    "number",
+    "time step (default: the scene's)",
+    None,
+    "s",
+    gt=0.0,
+    lo=TIME_STEP.lo,
+    hi=TIME_STEP.hi,
+)
 
 
-@contextlib.contextmanager
-def input_phase() -> Iterator[None]:
-    """Reading, validating and building the scene: whatever fails here is bad input (exit 2).
+def add_settings_options(parser: argparse.ArgumentParser) -> None:
+    """``--set KEY=VALUE`` (repeatable): any world setting, checked like a scene file's."""
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="change one world setting (repeatable), e.g. --set warm_start=false; "
+        "see the scene reference for every setting",
+    )
 
-    A ``ValueError`` or arithmetic error without a field path (the world refusing a value while
-    it is built) becomes a :class:`CliError` on ``scene``.
-    """
-    try:
-        yield
-    except (ValueError, ArithmeticError) as err:
-        if isinstance(err, ValueError) and isinstance(getattr(err, "path", None), str):
-            raise
-        raise CliError("scene", str(err) or type(err).__name__) from err
+
+def parse_assignments(items: list[str] | None, option: str) -> list[tuple[str, object]]:
+    """``KEY=VALUE`` texts as (setting, checked value) pairs; CliError naming the bad one."""
+    from sandbox.settings import parse_setting
+
+    out = []
+    for item in items or ():
+        key, sep, text = item.partition("=")
+        key = key.strip()
+        if not sep or not key:
+            raise CliError(option, f"expected KEY=VALUE, got {item!r}")
+        try:
+            out.append((key, parse_setting(key, text, f"{option} {key}")))
+        except SceneError as err:
+            raise CliError(err.path, err.message) from None
+    return out
 
 
 def load_spec(path: str, args: argparse.Namespace | None = None) -> dict:
@@ -105,6 +146,8 @@ def load_spec(path: str, args: argparse.Namespace | None = None) -> dict:
 
     spec = validate_scene(read_scene_file(path))
     if args is not None:
+        for key, value in parse_assignments(getattr(args, "set", None), "--set"):
+            spec["settings"][key] = value
         for key in (*CHOICES, "iterations"):
             value = getattr(args, key, None)
             if value is not None and not isinstance(value, list):
@@ -141,6 +184,21 @@ def check_writable(option: str, folder: Path) -> None:
     except OSError as err:
         why = err.strerror or "cannot create a file there"
         raise CliError(option, f"folder {str(folder)!r} is not writable ({why})") from None
+
+
+@contextlib.contextmanager
+def input_phase() -> Iterator[None]:
+    """Reading, validating and building the scene: whatever fails here is bad input (exit 2).
+
+    A ``ValueError`` or arithmetic error without a field path (the world refusing a value while
+    it is built) becomes a :class:`CliError` on ``scene``.
+    """
+    try:
+        yield
+    except (ValueError, ArithmeticError) as err:
+        if isinstance(err, ValueError) and isinstance(getattr(err, "path", None), str):
+            raise
+        raise CliError("scene", str(err) or type(err).__name__) from err
 
 
 def note(text: str) -> None:

@@ -14,8 +14,15 @@ from sandbox.cli.common import CliError
 
 def add_parser(sub) -> None:
     """The ``lessons`` command and its options."""
-    les = sub.add_parser("lessons", help="run lessons into outputs/")
-    les.add_argument("names", nargs="*", metavar="NAME")
+    les = sub.add_parser(
+        "lessons",
+        help="run lessons into outputs/",
+        description="Run lessons (all, or those named) and write their figures into outputs/.",
+        epilog="examples:\n  sandbox lessons\n  sandbox lessons 01 07\n  sandbox lessons friction",
+    )
+    les.add_argument(
+        "names", nargs="*", metavar="NAME", help="lesson number or part of its name (default: all)"
+    )
     les.set_defaults(func=run)
 
 

@@ -4,42 +4,23 @@
 - :class:`PivotJoint`: a hinge, anchors held together, optional angle limits and motor (``pivot``)
 - :class:`SpringJoint`: a damped spring, a force generator (``spring``)
 
-Anchors are in each body's origin frame (as in scene files). Pin and pivot joints are velocity
-constraints solved by the world's solver with sequential impulses, accumulated and warm-started
-across steps, plus a position pass (non-linear Gauss-Seidel, as Box2D) that removes the drift.
-The solver interface, per step::
-
-    for joint in world.joints: joint.prepare(world, dt)
-    for joint in world.joints: joint.warm_start(world)
-    for _ in range(settings.iterations):           # interleaved with contacts
-        for joint in world.joints: joint.solve_velocity(world)
-    ... positions move ...
-    for _ in range(settings.position_iterations):
-        error = max(joint.solve_position(world) for joint in world.joints)
-
-A spring's solver methods do nothing: it acts through ``accumulate`` like a force generator.
-Bodies sharing a joint do not collide with each other (as in the pymunk bridge): see
-:func:`joined_pairs` and :func:`drop_joined`.
+Anchors are in each body's origin frame (as in scene files). Each joint object is a view of
+its JOINT record in the world (``world.joint_table``); the step's joint stages
+(:mod:`sandbox.joints.solve`) work on the records. Pin and pivot joints are velocity
+constraints solved with sequential impulses, accumulated and warm-started across steps, plus a
+position pass (non-linear Gauss-Seidel, as Box2D) that removes the drift. A spring is a force
+(:func:`sandbox.joints.spring.spring_force`). Bodies sharing a joint do not collide with each
+other (as in the pymunk bridge): see :func:`sandbox.narrowphase.joined`.
 """
 
 from __future__ import annotations
-
-import numpy as np
 
 from sandbox.joints.base import Joint
 from sandbox.joints.pin import PinJoint
 from sandbox.joints.pivot import PivotJoint
 from sandbox.joints.spring import SpringJoint
 
-__all__ = [
-    "Joint",
-    "PinJoint",
-    "PivotJoint",
-    "SpringJoint",
-    "drop_joined",
-    "joined_pairs",
-    "joint_from_dict",
-]
+__all__ = ["Joint", "PinJoint", "PivotJoint", "SpringJoint", "joined_pairs", "joint_from_dict"]
 
 TYPES = {"pin": PinJoint, "pivot": PivotJoint, "spring": SpringJoint}
 
@@ -68,20 +49,3 @@ def joint_from_dict(spec: dict, world) -> Joint:
 def joined_pairs(world) -> set[tuple[int, int]]:
     """Every pair of body indices (i, j), i < j, that shares a joint (springs included)."""
     return {joint.bodies() for joint in world.joints}
-
-
-def drop_joined(world, pairs: np.ndarray, shape_body: np.ndarray) -> np.ndarray:
-    """The rows of a broadphase pair list ``pairs`` (k, 2) of shape indices whose two bodies do
-    not share a joint: what the collision code keeps before the narrowphase."""
-    if not world.joints or len(pairs) == 0:
-        return pairs
-    joined = joined_pairs(world)
-    ba, bb = shape_body[pairs[:, 0]], shape_body[pairs[:, 1]]
-    keep = np.array(
-        [
-            (min(i, j), max(i, j)) not in joined
-            for i, j in zip(ba.tolist(), bb.tolist(), strict=True)
-        ],
-        dtype=bool,
-    )
-    return pairs[keep] if not keep.all() else pairs

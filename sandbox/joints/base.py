@@ -1,8 +1,13 @@
-"""What every joint shares: two bodies, two anchors, and small helpers on the world's arrays.
+"""What every joint shares: two bodies, two anchors, a JOINT record, and the compiled helpers
+the joint solvers use on it.
 
-Anchors are given in each body's ORIGIN frame (as in the scene file); the world keeps body state
-about the centre of mass, so an anchor's lever arm is r = R(angle) (anchor - local_com) and its
-world position com + r (``docs/architecture.md``, "Body state").
+Anchors are given in each body's ORIGIN frame (as in the scene file); the record keeps them
+about each body's centre of mass (``local_a``, ``local_b``), so an anchor's lever arm is
+r = R(angle) local and its world position com + r (``docs/architecture.md``, "Body state").
+
+A :class:`Joint` object is a view of its row of the world's joint records (``world.joint_table``),
+as a :class:`~sandbox.body.Body` is a view of its body record; before it joins a world it keeps a
+record of its own.
 """
 
 from __future__ import annotations
@@ -11,8 +16,9 @@ import math
 
 import numpy as np
 
-from sandbox import orientation
-from sandbox.body import DYNAMIC, Body
+from sandbox.jit import njit
+from sandbox.math2d import cross, nudge, rotate
+from sandbox.records import DYNAMIC, JOINT
 
 # Box2D's tuning of the position pass (b2_linearSlop and b2_maxLinearCorrection); the angular slop
 # is smaller than Box2D's 2 degrees so that angle limits hold to about half a degree.
@@ -22,24 +28,59 @@ MAX_ANGULAR_CORRECTION = math.radians(8.0)  # rad turned per position pass at mo
 MAX_ARC_TURN = 0.1  # rad per step: the arc correction stops growing past this turn
 
 
-_TURN = np.zeros(1)  # scratch for turn()
+# --- compiled helpers over the records --------------------------------------------------------
+@njit
+def arm(body, local) -> tuple[float, float]:
+    """World-frame arm r = R(angle) local from the body's centre of mass (m)."""
+    return rotate(body["cs"][0], body["cs"][1], local[0], local[1])
 
 
-def cross(ax: float, ay: float, bx: float, by: float) -> float:
-    """2D cross product a x b (a scalar): slides, "Torque", tau = r x f."""
-    return ax * by - ay * bx
+@njit
+def inverse_masses(j, bodies) -> tuple[float, float, float, float]:
+    """(1/m_a, 1/I_a, 1/m_b, 1/I_b) of a joint's two bodies."""
+    a, b = bodies[j["a"]], bodies[j["b"]]
+    return a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"]
 
 
-def lever(world, i: int, anchor) -> tuple[float, float]:
-    """World-frame arm r = R(angle_i) (anchor - local_com_i) from body i's centre of mass (m)."""
-    cs, lc = world.cs, world.local_com
-    c, s = cs.item(i, 0), cs.item(i, 1)
-    qx = anchor[0] - lc.item(i, 0)
-    qy = anchor[1] - lc.item(i, 1)
-    return c * qx - s * qy, s * qx + c * qy
+@njit
+def anchor_velocity(va, ra, vb, rb) -> tuple[float, float]:
+    """Relative velocity of the anchors: vb + wb x rb - va - wa x ra (m/s)."""
+    return (
+        vb[0] - vb[2] * rb[1] - va[0] + va[2] * ra[1],
+        vb[1] + vb[2] * rb[0] - va[1] - va[2] * ra[0],
+    )
 
 
-def arc_error(r: tuple[float, float], turn: float) -> tuple[float, float]:
+@njit
+def apply_joint_impulse(va, vb, mass, ra, rb, px: float, py: float, angular: float):
+    """Impulse P on b at rb and -P on a at ra, plus an angular impulse on b (-it on a):
+    v += P / m, w += (r x P) / I (slides, "Effects of Force" / "Effects of Torque" as
+    impulses, the change of momentum)."""
+    va = (
+        va[0] - mass[0] * px,
+        va[1] - mass[0] * py,
+        va[2] - mass[1] * (cross(ra[0], ra[1], px, py) + angular),
+    )
+    vb = (
+        vb[0] + mass[2] * px,
+        vb[1] + mass[2] * py,
+        vb[2] + mass[3] * (cross(rb[0], rb[1], px, py) + angular),
+    )
+    return va, vb
+
+
+@njit
+def move_joint_bodies(j, bodies, ra, rb, px: float, py: float, angular: float) -> None:
+    """The position-pass twin of :func:`apply_joint_impulse`: a pseudo impulse moves the
+    centres of mass and turns the bodies (:func:`sandbox.math2d.nudge`)."""
+    mass = inverse_masses(j, bodies)
+    a, b = bodies[j["a"]], bodies[j["b"]]
+    nudge(a, -mass[0] * px, -mass[0] * py, -mass[1] * (cross(ra[0], ra[1], px, py) + angular))
+    nudge(b, mass[2] * px, mass[2] * py, mass[3] * (cross(rb[0], rb[1], px, py) + angular))
+
+
+@njit
+def arc_error(rx: float, ry: float, turn: float) -> tuple[float, float]:
     """How far the linear step r + (w dt) x r misses the arm's true end R(w dt) r (m).
 
     About -(w dt)^2 r / 2: the centripetal part a velocity-level constraint leaves out. The turn
@@ -47,58 +88,41 @@ def arc_error(r: tuple[float, float], turn: float) -> tuple[float, float]:
     """
     d = min(max(turn, -MAX_ARC_TURN), MAX_ARC_TURN)
     c, s = math.cos(d), math.sin(d)
-    return c * r[0] - s * r[1] - r[0] + d * r[1], s * r[0] + c * r[1] - r[1] - d * r[0]
+    return c * rx - s * ry - rx + d * ry, s * rx + c * ry - ry - d * rx
 
 
-def turn(world, i: int, dphi: float) -> None:
-    """Turn body i by ``dphi`` radians in the world's orientation representation (position pass)."""
-    if dphi == 0.0:
-        return
-    kind = world.orientation_kind
-    row = world.rot[i : i + 1]
-    _TURN[0] = dphi
-    orientation.integrate_rotations(kind, row, _TURN, world.settings.renormalise)
-    orientation.cos_sin(kind, row, world.cs[i : i + 1])
-
-
-def body_angle(world, i: int) -> float:
-    """Angle of body i (rad, in [-pi, pi]) from its (cos, sin)."""
-    return math.atan2(world.cs.item(i, 1), world.cs.item(i, 0))
-
-
-def unwrap(angle: float, near: float) -> float:
-    """The value of ``angle`` (mod 2 pi) closest to ``near``: keeps a relative angle continuous."""
-    return near + math.remainder(angle - near, math.tau)
-
-
+# --- the Python view --------------------------------------------------------------------------
 class Joint:
-    """Base class: bodies ``a`` and ``b``, anchors in each body's origin frame (m).
-
-    Subclasses implement the solver interface (called by ``sandbox.solvers``): ``prepare(world,
-    dt)`` once per step, ``warm_start(world)``, ``solve_velocity(world)`` once per velocity
-    iteration and ``solve_position(world) -> float`` once per position iteration.
-    """
+    """Base class: bodies ``a`` and ``b``, anchors in each body's origin frame (m)."""
 
     type = "joint"
+    code = -1  # the JOINT record's kind
 
-    def __init__(self, a: Body, b: Body, anchor_a=(0.0, 0.0), anchor_b=(0.0, 0.0)) -> None:
+    def __init__(self, a, b, anchor_a=(0.0, 0.0), anchor_b=(0.0, 0.0)) -> None:
         if a is b:
             raise ValueError(f"a joint needs two different bodies, got {a.name!r} twice")
         self.a, self.b = a, b
         self.anchor_a = np.array(anchor_a, dtype=float).reshape(2)
         self.anchor_b = np.array(anchor_b, dtype=float).reshape(2)
-        self._qa = (float(self.anchor_a[0]), float(self.anchor_a[1]))  # plain floats for speed
-        self._qb = (float(self.anchor_b[0]), float(self.anchor_b[1]))
-        self.world = None
-        self._i = self._j = -1
-        self._ma = self._mb = self._ja = self._jb = 0.0
         for name, value in (("anchor_a", self.anchor_a), ("anchor_b", self.anchor_b)):
             if not np.all(np.isfinite(value)):
                 raise ValueError(f"{name}: expected finite numbers, got {value.tolist()}")
+        self.world = None
+        self.index = -1
+        self._own = np.zeros(1, dtype=JOINT)
+        self._own[0]["kind"] = self.code
+
+    @property
+    def record(self):
+        """This joint's JOINT record (in the world's table once attached)."""
+        if self.world is None:
+            return self._own[0]
+        return self.world.joint_table[self.index]
 
     # --- building -----------------------------------------------------------------------------
     def attach(self, world) -> None:
-        """Check the bodies belong to ``world`` and that one of them can move."""
+        """Check the bodies belong to ``world`` and that one of them can move (the world then
+        adds the record, see ``World.add_joint``)."""
         for name, body in (("a", self.a), ("b", self.b)):
             if body.world is not world:
                 raise ValueError(f"{name}: body {body.name!r} is not in this world")
@@ -107,7 +131,17 @@ class Joint:
                 f"a joint needs at least one dynamic body, got {self.a.name!r} ({self.a.type}) "
                 f"and {self.b.name!r} ({self.b.type})"
             )
-        self.world = world
+
+    def place(self, world) -> None:
+        """Write the bodies and the anchors about their centres of mass into the record (after
+        the joint joined ``world``, and again whenever a body's centre of mass moved)."""
+        r = self.record
+        r["a"], r["b"] = self.a.index, self.b.index
+        r["local_a"] = self.anchor_a - world.local_com[self.a.index]
+        r["local_b"] = self.anchor_b - world.local_com[self.b.index]
+
+    def attached(self, world) -> None:
+        """Called once the record is in the world's table: fix what depends on the pose."""
 
     @property
     def ia(self) -> int:
@@ -135,57 +169,22 @@ class Joint:
     def world_anchors(self, world=None) -> tuple[np.ndarray, np.ndarray]:
         """World positions of the two anchors (m)."""
         w = world if world is not None else self.world
-        ra, rb = lever(w, self.ia, self._qa), lever(w, self.ib, self._qb)
-        return w.com[self.ia] + ra, w.com[self.ib] + rb
+        r = self.record
+        out = []
+        for i, local in ((self.ia, r["local_a"]), (self.ib, r["local_b"])):
+            c, s = w.cs[i]
+            x, y = c * local[0] - s * local[1], s * local[0] + c * local[1]
+            out.append(np.array([w.com[i, 0] + x, w.com[i, 1] + y]))
+        return out[0], out[1]
+
+    def anchor_distance(self, world=None) -> float:
+        """Distance between the two anchors (m)."""
+        pa, pb = self.world_anchors(world)
+        return float(math.hypot(*(pb - pa)))
 
     def anchor_error(self, world=None) -> float:
         """How far the joint is from holding (m); 0 when satisfied."""
         raise NotImplementedError
-
-    # --- solver interface (no-ops here; force-like joints keep them) ---------------------------
-    def prepare(self, world, dt: float) -> None:
-        """Once per step, before the velocity iterations: arms, effective masses."""
-
-    def warm_start(self, world) -> None:
-        """Apply last step's accumulated impulses (``settings.warm_start``)."""
-
-    def solve_velocity(self, world) -> None:
-        """One velocity iteration: an impulse that makes the velocity constraint hold."""
-
-    def solve_position(self, world) -> float:
-        """One position iteration (after positions moved); returns the error found (m)."""
-        return 0.0
-
-    # --- applying impulses --------------------------------------------------------------------
-    def _load_masses(self, world) -> None:
-        """Cache indices and inverse masses as plain floats for this step's solver calls."""
-        self._i, self._j = self.a.index, self.b.index
-        self._ma, self._mb = float(world.inv_mass[self._i]), float(world.inv_mass[self._j])
-        self._ja, self._jb = float(world.inv_moment[self._i]), float(world.inv_moment[self._j])
-
-    def _apply(self, world, px: float, py: float, ra, rb, ang: float = 0.0) -> None:
-        """Impulse P on b at rb and -P on a at ra, plus an angular impulse ``ang`` on b (-ang on a).
-
-        v += P / m, omega += (r x P) / I (slides, "Effects of Force" / "Effects of Torque" as
-        impulses: the change of momentum).
-        """
-        i, j, vel, om = self._i, self._j, world.vel, world.omega
-        vel[i, 0] = vel.item(i, 0) - self._ma * px
-        vel[i, 1] = vel.item(i, 1) - self._ma * py
-        om[i] = om.item(i) - self._ja * (ra[0] * py - ra[1] * px + ang)
-        vel[j, 0] = vel.item(j, 0) + self._mb * px
-        vel[j, 1] = vel.item(j, 1) + self._mb * py
-        om[j] = om.item(j) + self._jb * (rb[0] * py - rb[1] * px + ang)
-
-    def _move(self, world, px: float, py: float, ra, rb, ang: float = 0.0) -> None:
-        """The position-pass twin of :meth:`_apply`: a pseudo impulse moves com and angle."""
-        i, j, com = self._i, self._j, world.com
-        com[i, 0] = com.item(i, 0) - self._ma * px
-        com[i, 1] = com.item(i, 1) - self._ma * py
-        turn(world, i, -self._ja * (ra[0] * py - ra[1] * px + ang))
-        com[j, 0] = com.item(j, 0) + self._mb * px
-        com[j, 1] = com.item(j, 1) + self._mb * py
-        turn(world, j, self._jb * (rb[0] * py - rb[1] * px + ang))
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.a.name!r}, {self.b.name!r})"

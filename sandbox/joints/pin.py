@@ -5,14 +5,17 @@ vector from pa to pb:
 
     C = |pb - pa| - L = 0,      Cdot = u . (vb + wb x rb - va - wa x ra) = 0
 
+Its Jacobian row is J = [-u, -(ra x u), u, rb x u] on (va, wa, vb, wb), so the effective mass
+is 1 / K with K = J M^-1 J^T = 1/ma + 1/mb + (ra x u)^2 / Ia + (rb x u)^2 / Ib.
+
 Velocity pass (sequential impulses, Box2D's distance joint): an impulse lambda u on b (and
--lambda u on a) with lambda = -Cdot / K, K = 1/ma + 1/mb + (ra x u)^2 / Ia + (rb x u)^2 / Ib,
-accumulated over iterations and steps (warm starting). Position pass (non-linear Gauss-Seidel):
-move the bodies by the pseudo impulse -C / K u to remove the drift that velocities leave.
+-lambda u on a) with lambda = -(Cdot - target) / K, accumulated over iterations and steps (warm
+starting). Position pass (non-linear Gauss-Seidel): move the bodies by the pseudo impulse
+-C / K u to remove the drift that velocities leave.
 
 Arc correction: a step along the tangent lengthens the rod by about |v_side|^2 dt^2 / 2L (the
 bob leaves the circle). The velocity rule therefore asks for the small inward u . Cdot that
-lands the anchors at distance L at the END of the step (see ``_arc_target``); the position pass
+lands the anchors at distance L at the END of the step (:func:`arc_target`); the position pass
 then has almost nothing to do, and a pendulum keeps its energy instead of losing it each swing.
 """
 
@@ -20,14 +23,113 @@ from __future__ import annotations
 
 import math
 
+from sandbox.jit import njit
 from sandbox.joints.base import (
     MAX_ARC_TURN,
     MAX_LINEAR_CORRECTION,
     Joint,
+    anchor_velocity,
+    apply_joint_impulse,
     arc_error,
-    cross,
-    lever,
+    arm,
+    inverse_masses,
+    move_joint_bodies,
 )
+from sandbox.math2d import cross, inverse_or_zero, set_velocity, velocity_of
+from sandbox.records import PIN
+
+
+@njit
+def rod(j, bodies):
+    """Arms r_a, r_b, unit vector u from anchor a to anchor b, length |pb - pa| and
+    K = 1/ma + 1/mb + (ra x u)^2/Ia + (rb x u)^2/Ib, at the bodies' current poses."""
+    a, b = bodies[j["a"]], bodies[j["b"]]
+    ra, rb = arm(a, j["local_a"]), arm(b, j["local_b"])
+    dx = b["com"][0] + rb[0] - a["com"][0] - ra[0]
+    dy = b["com"][1] + rb[1] - a["com"][1] - ra[1]
+    length = math.sqrt(dx * dx + dy * dy)
+    ux, uy = (dx / length, dy / length) if length > 1e-12 else (0.0, 0.0)
+    ma, ia, mb, ib = inverse_masses(j, bodies)
+    cra, crb = cross(ra[0], ra[1], ux, uy), cross(rb[0], rb[1], ux, uy)
+    k = ma + mb + ia * cra * cra + ib * crb * crb
+    return ra, rb, (ux, uy), length, k
+
+
+@njit
+def arc_target(j, bodies, dt: float) -> float:
+    """The rate u . Cdot that brings the anchors to distance L at the END of the step.
+
+    The step moves the anchors apart by D = dt (vb + wb x rb - va - wa x ra) plus each arm's
+    arc error e (:func:`~sandbox.joints.base.arc_error`). Its sideways part D_perp also
+    lengthens the rod (Pythagoras), so ask for (L + dt u.Cdot + u.e)^2 + |D_perp|^2 = L^2.
+    Without this the pendulum drifts outwards every step and the position pass, pulling it
+    back, drains its energy.
+    """
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    ra = (j["anchor_a"][0], j["anchor_a"][1])
+    rb = (j["anchor_b"][0], j["anchor_b"][1])
+    ux, uy = j["axis"][0], j["axis"][1]
+    ea, eb = arc_error(ra[0], ra[1], va[2] * dt), arc_error(rb[0], rb[1], vb[2] * dt)
+    ex, ey = eb[0] - ea[0], eb[1] - ea[1]
+    rel = anchor_velocity(va, ra, vb, rb)
+    dx, dy = dt * rel[0] + ex, dt * rel[1] + ey
+    along = ux * dx + uy * dy
+    side2 = dx * dx + dy * dy - along * along
+    length = j["length"]
+    side2 = min(side2, (MAX_ARC_TURN * length) ** 2)  # as arc_error: bounded feedback
+    return (math.sqrt(length * length - side2) - length - (ux * ex + uy * ey)) / dt
+
+
+@njit
+def prepare_pin(j, bodies, dt: float, warm: bool) -> None:
+    """Arms, axis and effective mass for this step, and the arc-corrected target rate."""
+    ra, rb, u, _, k = rod(j, bodies)
+    j["anchor_a"][0], j["anchor_a"][1] = ra
+    j["anchor_b"][0], j["anchor_b"][1] = rb
+    j["axis"][0], j["axis"][1] = u
+    j["axial_mass"] = inverse_or_zero(k)
+    j["dt"] = dt
+    j["target"][0] = arc_target(j, bodies, dt)
+    if not warm:
+        j["impulse"][0] = 0.0
+
+
+@njit
+def warm_start_pin(j, bodies) -> None:
+    """Apply last step's accumulated impulse along the axis again."""
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    lam = j["impulse"][0]
+    ra, rb = (j["anchor_a"][0], j["anchor_a"][1]), (j["anchor_b"][0], j["anchor_b"][1])
+    mass = inverse_masses(j, bodies)
+    va, vb = apply_joint_impulse(va, vb, mass, ra, rb, lam * j["axis"][0], lam * j["axis"][1], 0.0)
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
+@njit
+def solve_pin_velocity(j, bodies) -> None:
+    """lambda = -(u . Cdot - target) / K along the axis, accumulated."""
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    ra, rb = (j["anchor_a"][0], j["anchor_a"][1]), (j["anchor_b"][0], j["anchor_b"][1])
+    ux, uy = j["axis"][0], j["axis"][1]
+    rel = anchor_velocity(va, ra, vb, rb)
+    lam = -j["axial_mass"] * (ux * rel[0] + uy * rel[1] - j["target"][0])
+    j["impulse"][0] += lam
+    va, vb = apply_joint_impulse(va, vb, inverse_masses(j, bodies), ra, rb, lam * ux, lam * uy, 0.0)
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
+@njit
+def solve_pin_position(j, bodies) -> float:
+    """Non-linear Gauss-Seidel on C = |pb - pa| - L; returns |C| before the push (m)."""
+    ra, rb, u, length, k = rod(j, bodies)
+    error = length - j["length"]
+    if k <= 0.0:
+        return abs(error)
+    lam = -min(max(error, -MAX_LINEAR_CORRECTION), MAX_LINEAR_CORRECTION) / k
+    move_joint_bodies(j, bodies, ra, rb, lam * u[0], lam * u[1], 0.0)
+    return abs(error)
 
 
 class PinJoint(Joint):
@@ -39,106 +141,30 @@ class PinJoint(Joint):
     """
 
     type = "pin"
+    code = PIN
 
-    def __init__(self, a, b, anchor_a=(0.0, 0.0), anchor_b=(0.0, 0.0)) -> None:
-        super().__init__(a, b, anchor_a, anchor_b)
-        self.distance = None  # m, fixed when attached
-        self.impulse = 0.0  # N s along u, accumulated
-        self._u = (0.0, 0.0)
-        self._ra = self._rb = (0.0, 0.0)
-        self._mass = 0.0
-        self._target = 0.0
-        self._dt = 0.0
+    def attached(self, world) -> None:
+        self.record["length"] = self.anchor_distance(world)
 
-    def attach(self, world) -> None:
-        super().attach(world)
-        pa, pb = self.world_anchors(world)
-        self.distance = float(math.hypot(*(pb - pa)))
+    @property
+    def distance(self) -> float | None:
+        """The rod's length L (m), fixed when the joint joins a world."""
+        return float(self.record["length"]) if self.world is not None else None
+
+    @property
+    def impulse(self) -> float:
+        """Accumulated impulse along the axis (N s) of the last step."""
+        return float(self.record["impulse"][0])
 
     def to_dict(self) -> dict:
         return self._anchors_dict()
 
-    # --- geometry -----------------------------------------------------------------------------
-    def _frame(self, world):
-        """Arms, unit vector a -> b, current length and K = 1 / effective mass."""
-        ia, ib, com = self.a.index, self.b.index, world.com
-        ra, rb = lever(world, ia, self._qa), lever(world, ib, self._qb)
-        dx = com.item(ib, 0) + rb[0] - com.item(ia, 0) - ra[0]
-        dy = com.item(ib, 1) + rb[1] - com.item(ia, 1) - ra[1]
-        length = math.hypot(dx, dy)
-        u = (dx / length, dy / length) if length > 1e-12 else (0.0, 0.0)
-        cra, crb = cross(*ra, *u), cross(*rb, *u)
-        k = (
-            world.inv_mass.item(ia)
-            + world.inv_mass.item(ib)
-            + world.inv_moment.item(ia) * cra * cra
-            + world.inv_moment.item(ib) * crb * crb
-        )
-        return ra, rb, u, length, k
-
     def anchor_error(self, world=None) -> float:
         """| |pb - pa| - L | (m)."""
-        w = world if world is not None else self.world
-        return abs(self._frame(w)[3] - self.distance)
+        return abs(self.anchor_distance(world) - self.record["length"])
 
     @property
     def reaction_force(self) -> float:
         """Tension (N, > 0 pulling the anchors together) of the last step: impulse / dt."""
-        return -self.impulse / self._dt if self._dt > 0 else 0.0
-
-    # --- solver -------------------------------------------------------------------------------
-    def prepare(self, world, dt: float) -> None:
-        self._load_masses(world)
-        self._ra, self._rb, self._u, _, k = self._frame(world)
-        self._mass = 1.0 / k if k > 0.0 else 0.0
-        self._dt = dt
-        self._target = self._arc_target(world, dt)
-        if not world.settings.warm_start:
-            self.impulse = 0.0
-
-    def _arc_target(self, world, dt: float) -> float:
-        """The rate u . Cdot that brings the anchors to distance L at the END of the step.
-
-        The step moves the anchors apart by D = dt (vb + wb x rb - va - wa x ra) plus each arm's
-        arc error e (:func:`~sandbox.joints.base.arc_error`). Its sideways part D_perp also
-        lengthens the rod (Pythagoras), so ask for (L + dt u.Cdot + u.e)^2 + |D_perp|^2 = L^2.
-        Without this the pendulum drifts outwards every step and the position pass, pulling
-        it back, drains its energy.
-        """
-        i, j, vel, om = self._i, self._j, world.vel, world.omega
-        ra, rb, (ux, uy) = self._ra, self._rb, self._u
-        wa, wb = om.item(i), om.item(j)
-        ea, eb = arc_error(ra, wa * dt), arc_error(rb, wb * dt)
-        ex, ey = eb[0] - ea[0], eb[1] - ea[1]
-        dx = dt * (vel.item(j, 0) - wb * rb[1] - vel.item(i, 0) + wa * ra[1]) + ex
-        dy = dt * (vel.item(j, 1) + wb * rb[0] - vel.item(i, 1) - wa * ra[0]) + ey
-        along = ux * dx + uy * dy
-        side2 = dx * dx + dy * dy - along * along
-        length = self.distance
-        side2 = min(side2, (MAX_ARC_TURN * length) ** 2)  # as arc_error: bounded feedback
-        return (math.sqrt(length * length - side2) - length - (ux * ex + uy * ey)) / dt
-
-    def warm_start(self, world) -> None:
-        ux, uy = self._u
-        self._apply(world, self.impulse * ux, self.impulse * uy, self._ra, self._rb)
-
-    def solve_velocity(self, world) -> None:
-        i, j, vel, om = self._i, self._j, world.vel, world.omega
-        ra, rb, (ux, uy) = self._ra, self._rb, self._u
-        wa, wb = om.item(i), om.item(j)
-        # relative velocity of the anchors: vb + wb x rb - va - wa x ra
-        dvx = vel.item(j, 0) - wb * rb[1] - vel.item(i, 0) + wa * ra[1]
-        dvy = vel.item(j, 1) + wb * rb[0] - vel.item(i, 1) - wa * ra[0]
-        lam = -self._mass * (ux * dvx + uy * dvy - self._target)
-        self.impulse += lam
-        self._apply(world, lam * ux, lam * uy, ra, rb)
-
-    def solve_position(self, world) -> float:
-        ra, rb, (ux, uy), length, k = self._frame(world)
-        error = length - self.distance
-        if not world.settings.position_correction or k <= 0.0:
-            return abs(error)
-        c = min(max(error, -MAX_LINEAR_CORRECTION), MAX_LINEAR_CORRECTION)
-        lam = -c / k
-        self._move(world, lam * ux, lam * uy, ra, rb)
-        return abs(error)
+        dt = self.record["dt"]
+        return -self.impulse / dt if dt > 0 else 0.0

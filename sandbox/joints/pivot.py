@@ -8,47 +8,195 @@ solved with the 2x2 effective-mass matrix K (Box2D's revolute joint):
 
     K = (1/ma + 1/mb) I + [ra_y^2/Ia + rb_y^2/Ib, -ra_x ra_y/Ia - rb_x rb_y/Ib; ..., ra_x^2/Ia + rb_x^2/Ib]
 
-Relative angle theta = angle_b - angle_a (as pymunk's ``RotaryLimitJoint``; kept continuous, so
-a wheel turning many times does not wrap). Limits lo <= theta <= hi are two one-sided angular
-constraints (impulses that only push); the motor drives wb - wa to ``rate`` with an angular
-impulse bounded by ``max_torque * dt``. Position pass: non-linear Gauss-Seidel on the limits,
-then on the point.
+Relative angle theta = angle_b - angle_a (as pymunk's ``RotaryLimitJoint``; the bodies' angles
+are continuous, so a wheel turning many times does not wrap). Limits lo <= theta <= hi are two
+one-sided angular constraints (impulses that only push); the motor drives wb - wa to ``rate``
+with an angular impulse bounded by ``max_torque * dt``. Position pass: non-linear Gauss-Seidel
+on the limits, then on the point.
 
 Arc correction: a turning body's anchor moves on an arc, R(w dt) r, not along the tangent
 r + (w dt) x r that the velocity rows assume; the point rows aim at the arc's end
-(``base.arc_error``), so a swinging rod or chain drifts and loses energy much less.
+(:func:`~sandbox.joints.base.arc_error`), so a swinging rod or chain drifts and loses energy
+much less.
 """
 
 from __future__ import annotations
 
 import math
 
+from sandbox.jit import njit
 from sandbox.joints.base import (
     ANGULAR_SLOP,
     MAX_ANGULAR_CORRECTION,
     Joint,
+    anchor_velocity,
+    apply_joint_impulse,
     arc_error,
-    body_angle,
-    lever,
-    unwrap,
+    arm,
+    inverse_masses,
+    move_joint_bodies,
 )
+from sandbox.math2d import inverse_or_zero, set_velocity, velocity_of
+from sandbox.records import PIVOT
 
 
-def _k_matrix(ma: float, mb: float, ja: float, jb: float, ra, rb) -> tuple[float, float, float]:
-    """K = [[k11, k12], [k12, k22]] of the point constraint (inverse masses ma, mb, ja, jb)."""
-    k11 = ma + mb + ja * ra[1] * ra[1] + jb * rb[1] * rb[1]
-    k12 = -ja * ra[0] * ra[1] - jb * rb[0] * rb[1]
-    k22 = ma + mb + ja * ra[0] * ra[0] + jb * rb[0] * rb[0]
+@njit
+def point_matrix(mass, ra, rb) -> tuple[float, float, float]:
+    """K = [[k11, k12], [k12, k22]] of the point constraint (inverse masses ``mass``)."""
+    ma, ia, mb, ib = mass
+    k11 = ma + mb + ia * ra[1] * ra[1] + ib * rb[1] * rb[1]
+    k12 = -ia * ra[0] * ra[1] - ib * rb[0] * rb[1]
+    k22 = ma + mb + ia * ra[0] * ra[0] + ib * rb[0] * rb[0]
     return k11, k12, k22
 
 
-def _solve2(k11: float, k12: float, k22: float, bx: float, by: float) -> tuple[float, float]:
+@njit
+def solve2(k, bx: float, by: float) -> tuple[float, float]:
     """x with K x = b (Cramer's rule); zero when K is singular."""
+    k11, k12, k22 = k
     det = k11 * k22 - k12 * k12
     if det == 0.0:
         return 0.0, 0.0
     inv = 1.0 / det
     return inv * (k22 * bx - k12 * by), inv * (k11 * by - k12 * bx)
+
+
+@njit
+def relative_angle(j, bodies) -> float:
+    """angle_b - angle_a (rad), continuous, including what the position passes turned."""
+    a, b = bodies[j["a"]], bodies[j["b"]]
+    return (b["angle"] + b["turn"]) - (a["angle"] + a["turn"])
+
+
+@njit
+def prepare_pivot(j, bodies, dt: float, warm: bool) -> None:
+    """Arms, K, the axial mass 1 / (1/Ia + 1/Ib), the relative angle and the arc targets."""
+    a, b = bodies[j["a"]], bodies[j["b"]]
+    mass = inverse_masses(j, bodies)
+    ra, rb = arm(a, j["local_a"]), arm(b, j["local_b"])
+    j["anchor_a"][0], j["anchor_a"][1] = ra
+    j["anchor_b"][0], j["anchor_b"][1] = rb
+    j["k"][0], j["k"][1], j["k"][2] = point_matrix(mass, ra, rb)
+    axial = mass[1] + mass[3]
+    j["axial_mass"] = inverse_or_zero(axial)
+    j["dt"] = dt
+    j["angle"] = relative_angle(j, bodies)
+    # arc correction: aim the point rows at where the anchors really go by the end of the
+    # step, c + v dt + R(w dt) r, not at the straight-line c + r + (v + w x r) dt
+    ea = arc_error(ra[0], ra[1], a["omega"] * dt)
+    eb = arc_error(rb[0], rb[1], b["omega"] * dt)
+    j["target"][0], j["target"][1] = (ea[0] - eb[0]) / dt, (ea[1] - eb[1]) / dt
+    if not warm:
+        j["impulse"][0] = j["impulse"][1] = 0.0
+        j["motor_impulse"] = j["lower_impulse"] = j["upper_impulse"] = 0.0
+    if not j["has_limits"] or axial == 0.0:
+        j["lower_impulse"] = j["upper_impulse"] = 0.0
+    if not j["has_motor"] or axial == 0.0:
+        j["motor_impulse"] = 0.0
+
+
+@njit
+def warm_start_pivot(j, bodies) -> None:
+    """Apply last step's point impulse and angular impulses (motor, limits) again."""
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    ra, rb = (j["anchor_a"][0], j["anchor_a"][1]), (j["anchor_b"][0], j["anchor_b"][1])
+    axial = j["motor_impulse"] + j["lower_impulse"] - j["upper_impulse"]
+    mass = inverse_masses(j, bodies)
+    va, vb = apply_joint_impulse(va, vb, mass, ra, rb, j["impulse"][0], j["impulse"][1], axial)
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
+@njit
+def push_only(lam: float, total: float, accumulate: bool) -> tuple[float, float]:
+    """Clamp a limit impulse so the accumulated (or, without accumulation, the single) impulse
+    only pushes (>= 0); returns (impulse to apply, new total)."""
+    if accumulate:
+        new = max(total + lam, 0.0)
+        return new - total, new
+    lam = max(lam, 0.0)
+    return lam, total + lam
+
+
+@njit
+def angular(va, vb, mass, lam: float):
+    """An angular impulse lam on b and -lam on a."""
+    return (va[0], va[1], va[2] - mass[1] * lam), (vb[0], vb[1], vb[2] + mass[3] * lam)
+
+
+@njit
+def solve_pivot_velocity(j, bodies, accumulate: bool) -> None:
+    """Motor, then the limits, then the point (Box2D's revolute joint order)."""
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    mass = inverse_masses(j, bodies)
+    axial_mass = j["axial_mass"]
+    if axial_mass > 0.0 and j["has_motor"]:
+        # motor: Cdot = wb - wa - rate, |impulse| <= max_torque dt
+        lam = -axial_mass * (vb[2] - va[2] - j["motor_rate"])
+        bound = j["max_torque"] * j["dt"]
+        if accumulate:
+            old = j["motor_impulse"]
+            j["motor_impulse"] = min(max(old + lam, -bound), bound)
+            lam = j["motor_impulse"] - old
+        else:
+            lam = min(max(lam, -bound), bound)
+            j["motor_impulse"] += lam
+        va, vb = angular(va, vb, mass, lam)
+    if axial_mass > 0.0 and j["has_limits"]:
+        inv_dt = 1.0 / j["dt"]
+        # lower: C = theta - lo >= 0; a gap C > 0 may close at C / dt this step (speculative)
+        c = j["angle"] - j["lower"]
+        lam = -axial_mass * (vb[2] - va[2] + max(c, 0.0) * inv_dt)
+        lam, j["lower_impulse"] = push_only(lam, j["lower_impulse"], accumulate)
+        va, vb = angular(va, vb, mass, lam)
+        # upper: C = hi - theta >= 0, pushing the other way
+        c = j["upper"] - j["angle"]
+        lam = -axial_mass * (va[2] - vb[2] + max(c, 0.0) * inv_dt)
+        lam, j["upper_impulse"] = push_only(lam, j["upper_impulse"], accumulate)
+        va, vb = angular(va, vb, mass, -lam)
+    # point: Cdot = vb + wb x rb - va - wa x ra, impulse = K^-1 (target - Cdot)
+    ra, rb = (j["anchor_a"][0], j["anchor_a"][1]), (j["anchor_b"][0], j["anchor_b"][1])
+    cx, cy = anchor_velocity(va, ra, vb, rb)
+    k = (j["k"][0], j["k"][1], j["k"][2])
+    px, py = solve2(k, j["target"][0] - cx, j["target"][1] - cy)
+    j["impulse"][0] += px
+    j["impulse"][1] += py
+    va, vb = apply_joint_impulse(va, vb, mass, ra, rb, px, py, 0.0)
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
+@njit
+def limit_error(theta: float, lo: float, hi: float) -> float:
+    """How far theta is outside [lo, hi] beyond the angular slop (rad, signed), clamped."""
+    if hi - lo < 2.0 * ANGULAR_SLOP:
+        return min(max(theta - lo, -MAX_ANGULAR_CORRECTION), MAX_ANGULAR_CORRECTION)
+    if theta <= lo:
+        return min(max(theta - lo + ANGULAR_SLOP, -MAX_ANGULAR_CORRECTION), 0.0)
+    if theta >= hi:
+        return min(max(theta - hi - ANGULAR_SLOP, 0.0), MAX_ANGULAR_CORRECTION)
+    return 0.0
+
+
+@njit
+def solve_pivot_position(j, bodies) -> float:
+    """NGS on the limits, then on the point; returns the larger error found (m, or rad for a
+    limit)."""
+    mass = inverse_masses(j, bodies)
+    angular_error = 0.0
+    axial = mass[1] + mass[3]
+    if j["has_limits"] and axial > 0.0:
+        c = limit_error(relative_angle(j, bodies), j["lower"], j["upper"])
+        angular_error = abs(c)
+        if c != 0.0:
+            move_joint_bodies(j, bodies, (0.0, 0.0), (0.0, 0.0), 0.0, 0.0, -c / axial)
+    a, b = bodies[j["a"]], bodies[j["b"]]
+    ra, rb = arm(a, j["local_a"]), arm(b, j["local_b"])
+    cx = b["com"][0] + rb[0] - a["com"][0] - ra[0]
+    cy = b["com"][1] + rb[1] - a["com"][1] - ra[1]
+    px, py = solve2(point_matrix(mass, ra, rb), -cx, -cy)
+    move_joint_bodies(j, bodies, ra, rb, px, py, 0.0)
+    return max(math.hypot(cx, cy), angular_error)
 
 
 class PivotJoint(Joint):
@@ -60,30 +208,60 @@ class PivotJoint(Joint):
     """
 
     type = "pivot"
+    code = PIVOT
 
     def __init__(self, a, b, anchor_a=(0.0, 0.0), anchor_b=(0.0, 0.0), limits=None, motor=None):
         super().__init__(a, b, anchor_a, anchor_b)
-        self.limits = None
-        if limits is not None:
-            lo, hi = (float(x) for x in limits)
-            if not lo <= hi:
-                raise ValueError(f"limits: expected lo <= hi, got [{lo}, {hi}]")
-            self.limits = (lo, hi)
-        self.rate = self.max_torque = None
+        self.limits = limits
         if motor is not None:
-            self.rate = float(motor["rate"])
             self.max_torque = float(motor.get("max_torque", math.inf))
-            if not self.max_torque > 0:
-                raise ValueError(f"motor.max_torque: expected > 0, got {self.max_torque}")
-        self.impulse = (0.0, 0.0)  # N s, point constraint, accumulated
-        self.motor_impulse = 0.0  # N m s
-        self.lower_impulse = self.upper_impulse = 0.0  # N m s, >= 0 each
-        self.angle = 0.0  # rad, angle_b - angle_a, continuous
-        self._ra = self._rb = (0.0, 0.0)
-        self._k = (0.0, 0.0, 0.0)
-        self._axial = 0.0
-        self._target = (0.0, 0.0)
-        self._dt = 0.0
+            self.rate = float(motor["rate"])
+
+    @property
+    def limits(self) -> tuple[float, float] | None:
+        """(lo, hi) bounds of angle_b - angle_a (rad), or None."""
+        r = self.record
+        return (float(r["lower"]), float(r["upper"])) if r["has_limits"] else None
+
+    @limits.setter
+    def limits(self, value) -> None:
+        r = self.record
+        if value is None:
+            r["has_limits"] = False
+            return
+        lo, hi = (float(x) for x in value)
+        if not lo <= hi:
+            raise ValueError(f"limits: expected lo <= hi, got [{lo}, {hi}]")
+        r["lower"], r["upper"], r["has_limits"] = lo, hi, True
+
+    @property
+    def rate(self) -> float | None:
+        """The motor's target rate omega_b - omega_a (rad/s), or None without a motor."""
+        r = self.record
+        return float(r["motor_rate"]) if r["has_motor"] else None
+
+    @rate.setter
+    def rate(self, value) -> None:
+        r = self.record
+        if value is None:
+            r["has_motor"] = False
+            return
+        if not r["max_torque"] > 0:
+            r["max_torque"] = math.inf
+        r["motor_rate"], r["has_motor"] = float(value), True
+
+    @property
+    def max_torque(self) -> float | None:
+        """The motor's largest torque (N m), or None without a motor."""
+        r = self.record
+        return float(r["max_torque"]) if r["has_motor"] else None
+
+    @max_torque.setter
+    def max_torque(self, value) -> None:
+        value = float(value)
+        if not value > 0:
+            raise ValueError(f"motor.max_torque: expected > 0, got {value}")
+        self.record["max_torque"] = value
 
     @property
     def motor(self) -> dict | None:
@@ -91,143 +269,58 @@ class PivotJoint(Joint):
             return None
         return {"rate": self.rate, "max_torque": self.max_torque}
 
-    def attach(self, world) -> None:
-        super().attach(world)
-        self.angle = body_angle(world, self.ib) - body_angle(world, self.ia)
+    @property
+    def angle(self) -> float:
+        """angle_b - angle_a (rad) at the last step's start, continuous."""
+        return float(self.record["angle"])
+
+    @property
+    def impulse(self) -> tuple[float, float]:
+        """Accumulated point impulse on b (N s) of the last step."""
+        return float(self.record["impulse"][0]), float(self.record["impulse"][1])
+
+    @property
+    def motor_impulse(self) -> float:
+        return float(self.record["motor_impulse"])
+
+    @property
+    def lower_impulse(self) -> float:
+        return float(self.record["lower_impulse"])
+
+    @property
+    def upper_impulse(self) -> float:
+        return float(self.record["upper_impulse"])
+
+    def attached(self, world) -> None:
+        self.record["angle"] = self.relative_angle(world)
 
     def to_dict(self) -> dict:
+        limits = self.limits
         return {
             **self._anchors_dict(),
-            "limits": None if self.limits is None else list(self.limits),
+            "limits": None if limits is None else list(limits),
             "motor": self.motor,
         }
 
     def relative_angle(self, world=None) -> float:
         """angle_b - angle_a (rad), continuous across turns."""
         w = world if world is not None else self.world
-        return unwrap(body_angle(w, self.ib) - body_angle(w, self.ia), self.angle)
+        return float(w.state["angle"][self.ib] - w.state["angle"][self.ia])
 
     def anchor_error(self, world=None) -> float:
         """|pb - pa| (m)."""
-        pa, pb = self.world_anchors(world)
-        return float(math.hypot(*(pb - pa)))
+        return self.anchor_distance(world)
 
     @property
     def reaction_force(self) -> tuple[float, float]:
         """Force on b from the pin during the last step: impulse / dt (N)."""
-        if self._dt <= 0:
+        dt = self.record["dt"]
+        if dt <= 0:
             return (0.0, 0.0)
-        return (self.impulse[0] / self._dt, self.impulse[1] / self._dt)
+        return (self.impulse[0] / dt, self.impulse[1] / dt)
 
     @property
     def motor_torque(self) -> float:
         """Torque the motor applied on b in the last step (N m)."""
-        return self.motor_impulse / self._dt if self._dt > 0 else 0.0
-
-    # --- solver -------------------------------------------------------------------------------
-    def prepare(self, world, dt: float) -> None:
-        self._load_masses(world)
-        self._ra, self._rb = lever(world, self._i, self._qa), lever(world, self._j, self._qb)
-        self._k = _k_matrix(self._ma, self._mb, self._ja, self._jb, self._ra, self._rb)
-        axial = self._ja + self._jb
-        self._axial = 1.0 / axial if axial > 0.0 else 0.0
-        self._dt = dt
-        self.angle = self.relative_angle(world)
-        # arc correction: aim the point rows at where the anchors really go by the end of the
-        # step, c + v dt + R(w dt) r, not at the straight-line c + r + (v + w x r) dt
-        ea = arc_error(self._ra, world.omega.item(self._i) * dt)
-        eb = arc_error(self._rb, world.omega.item(self._j) * dt)
-        self._target = ((ea[0] - eb[0]) / dt, (ea[1] - eb[1]) / dt)
-        if not world.settings.warm_start:
-            self.impulse, self.motor_impulse = (0.0, 0.0), 0.0
-            self.lower_impulse = self.upper_impulse = 0.0
-        if self.limits is None or axial == 0.0:
-            self.lower_impulse = self.upper_impulse = 0.0
-        if self.rate is None or axial == 0.0:
-            self.motor_impulse = 0.0
-
-    def warm_start(self, world) -> None:
-        axial = self.motor_impulse + self.lower_impulse - self.upper_impulse
-        self._apply(world, self.impulse[0], self.impulse[1], self._ra, self._rb, axial)
-
-    def _angular(self, world, lam: float) -> None:
-        """An angular impulse lam on b and -lam on a."""
-        om = world.omega
-        om[self._i] = om.item(self._i) - self._ja * lam
-        om[self._j] = om.item(self._j) + self._jb * lam
-
-    def solve_velocity(self, world) -> None:
-        i, j, vel, om = self._i, self._j, world.vel, world.omega
-        accumulate = world.settings.accumulate_impulses
-        if self._axial > 0.0 and self.rate is not None:
-            # motor: Cdot = wb - wa - rate, |impulse| <= max_torque dt
-            lam = -self._axial * (om.item(j) - om.item(i) - self.rate)
-            bound = self.max_torque * self._dt
-            if accumulate:
-                old = self.motor_impulse
-                self.motor_impulse = min(max(old + lam, -bound), bound)
-                lam = self.motor_impulse - old
-            else:
-                lam = min(max(lam, -bound), bound)
-                self.motor_impulse += lam
-            self._angular(world, lam)
-        if self._axial > 0.0 and self.limits is not None:
-            lo, hi = self.limits
-            inv_dt = 1.0 / self._dt
-            # lower: C = theta - lo >= 0; a gap C > 0 may close at C / dt this step (speculative)
-            c = self.angle - lo
-            lam = -self._axial * (om.item(j) - om.item(i) + max(c, 0.0) * inv_dt)
-            lam, self.lower_impulse = _push_only(lam, self.lower_impulse, accumulate)
-            self._angular(world, lam)
-            # upper: C = hi - theta >= 0, pushing the other way
-            c = hi - self.angle
-            lam = -self._axial * (om.item(i) - om.item(j) + max(c, 0.0) * inv_dt)
-            lam, self.upper_impulse = _push_only(lam, self.upper_impulse, accumulate)
-            self._angular(world, -lam)
-        # point: Cdot = vb + wb x rb - va - wa x ra, impulse = K^-1 (target - Cdot)
-        ra, rb = self._ra, self._rb
-        wa, wb = om.item(i), om.item(j)
-        cx = vel.item(j, 0) - wb * rb[1] - vel.item(i, 0) + wa * ra[1]
-        cy = vel.item(j, 1) + wb * rb[0] - vel.item(i, 1) - wa * ra[0]
-        px, py = _solve2(*self._k, self._target[0] - cx, self._target[1] - cy)
-        self.impulse = (self.impulse[0] + px, self.impulse[1] + py)
-        self._apply(world, px, py, ra, rb)
-
-    def solve_position(self, world) -> float:
-        """NGS on the limits, then on the point; returns the larger error found (m, or rad for
-        a limit)."""
-        i, j, com = self._i, self._j, world.com
-        correct = world.settings.position_correction
-        angular_error = 0.0
-        axial = self._ja + self._jb
-        if self.limits is not None and axial > 0.0:
-            lo, hi = self.limits
-            theta = self.relative_angle(world)
-            c = 0.0
-            if hi - lo < 2.0 * ANGULAR_SLOP:
-                c = min(max(theta - lo, -MAX_ANGULAR_CORRECTION), MAX_ANGULAR_CORRECTION)
-            elif theta <= lo:
-                c = min(max(theta - lo + ANGULAR_SLOP, -MAX_ANGULAR_CORRECTION), 0.0)
-            elif theta >= hi:
-                c = min(max(theta - hi - ANGULAR_SLOP, 0.0), MAX_ANGULAR_CORRECTION)
-            angular_error = abs(c)
-            if correct and c != 0.0:
-                self._move(world, 0.0, 0.0, (0.0, 0.0), (0.0, 0.0), -c / axial)
-        ra, rb = lever(world, i, self._qa), lever(world, j, self._qb)
-        cx = com.item(j, 0) + rb[0] - com.item(i, 0) - ra[0]
-        cy = com.item(j, 1) + rb[1] - com.item(i, 1) - ra[1]
-        if correct:
-            k = _k_matrix(self._ma, self._mb, self._ja, self._jb, ra, rb)
-            px, py = _solve2(*k, -cx, -cy)
-            self._move(world, px, py, ra, rb)
-        return max(math.hypot(cx, cy), angular_error)
-
-
-def _push_only(lam: float, total: float, accumulate: bool) -> tuple[float, float]:
-    """Clamp a limit impulse so the accumulated (or, without accumulation, the single) impulse
-    only pushes (>= 0); returns (impulse to apply, new total)."""
-    if accumulate:
-        new = max(total + lam, 0.0)
-        return new - total, new
-    lam = max(lam, 0.0)
-    return lam, total + lam
+        dt = self.record["dt"]
+        return self.motor_impulse / dt if dt > 0 else 0.0

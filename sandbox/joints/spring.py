@@ -8,19 +8,40 @@ With d = pb - pa between the world anchors, d_hat = d / |d| and x = |d| - L the 
 applied at the anchors, so each body also feels the torque r x F (slides, "Torque").
 
 Design choice: a spring is a force generator. It lives in ``world.joints`` (it is a joint in the
-scene file) but is evaluated through ``accumulate(world, p, v, phi, w, f, tau)`` together with
-the other forces, so look-ahead integrators (Verlet, RK4) see it at their intermediate states,
-and its potential energy k x^2 / 2 counts in ``world.potential_energy()``. Its solver methods do
-nothing.
+scene file) but its force is evaluated with the other forces (:func:`spring_force`, called by
+:func:`sandbox.forces.accumulate_forces`), so look-ahead integrators (Verlet, RK4) see it at
+their intermediate states, and its potential energy k x^2 / 2 counts in
+``world.potential_energy()``. The joint solvers skip it.
 """
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
+from sandbox.jit import njit
+from sandbox.joints.base import Joint
+from sandbox.math2d import rotate
+from sandbox.records import SPRING
 
-from sandbox.joints.base import Joint, cross
+
+@njit
+def spring_force(j, bodies, state) -> tuple[float, float, tuple, tuple]:
+    """Spring + damper force on b (N) at the integrator's ``state`` (MOTION records: ``p``
+    centre of mass, ``v``, ``phi`` angle, ``w``), and the two arms (m)."""
+    sa, sb = state[j["a"]], state[j["b"]]
+    ra = rotate(math.cos(sa["phi"]), math.sin(sa["phi"]), j["local_a"][0], j["local_a"][1])
+    rb = rotate(math.cos(sb["phi"]), math.sin(sb["phi"]), j["local_b"][0], j["local_b"][1])
+    dx = sb["p"][0] + rb[0] - sa["p"][0] - ra[0]
+    dy = sb["p"][1] + rb[1] - sa["p"][1] - ra[1]
+    length = math.sqrt(dx * dx + dy * dy)
+    if length <= 1e-12:
+        return 0.0, 0.0, ra, rb
+    ux, uy = dx / length, dy / length
+    # relative velocity of the anchors: vb + wb x rb - va - wa x ra
+    rvx = sb["v"][0] - sb["w"] * rb[1] - sa["v"][0] + sa["w"] * ra[1]
+    rvy = sb["v"][1] + sb["w"] * rb[0] - sa["v"][1] - sa["w"] * ra[0]
+    magnitude = -j["stiffness"] * (length - j["length"]) - j["damping"] * (rvx * ux + rvy * uy)
+    return magnitude * ux, magnitude * uy, ra, rb
 
 
 class SpringJoint(Joint):
@@ -30,6 +51,7 @@ class SpringJoint(Joint):
     """
 
     type = "spring"
+    code = SPRING
 
     def __init__(
         self,
@@ -42,20 +64,48 @@ class SpringJoint(Joint):
         damping: float = 0.0,
     ) -> None:
         super().__init__(a, b, anchor_a, anchor_b)
-        self.rest_length = None if rest_length is None else float(rest_length)
-        self.stiffness = float(stiffness)
-        self.damping = float(damping)
-        for name, value in (("stiffness", self.stiffness), ("damping", self.damping)):
-            if not (math.isfinite(value) and value >= 0.0):
-                raise ValueError(f"{name}: expected a number >= 0, got {value}")
-        if self.rest_length is not None and not self.rest_length >= 0.0:
-            raise ValueError(f"rest_length: expected a number >= 0, got {self.rest_length}")
+        self._rest_given = rest_length is not None
+        self.rest_length = 0.0 if rest_length is None else rest_length
+        self.stiffness = stiffness
+        self.damping = damping
 
-    def attach(self, world) -> None:
-        super().attach(world)
-        if self.rest_length is None:
-            pa, pb = self.world_anchors(world)
-            self.rest_length = float(math.hypot(*(pb - pa)))
+    def attached(self, world) -> None:
+        if not self._rest_given:
+            self.record["length"] = self.anchor_distance(world)
+            self._rest_given = True
+
+    def _set(self, field: str, name: str, value: float) -> None:
+        value = float(value)
+        if not (math.isfinite(value) and value >= 0.0):
+            raise ValueError(f"{name}: expected a number >= 0, got {value}")
+        self.record[field] = value
+
+    @property
+    def rest_length(self) -> float | None:
+        """L (m); None until attached when it is taken from the anchors' distance."""
+        return float(self.record["length"]) if self._rest_given else None
+
+    @rest_length.setter
+    def rest_length(self, value: float) -> None:
+        self._set("length", "rest_length", value)
+
+    @property
+    def stiffness(self) -> float:
+        """k (N/m)."""
+        return float(self.record["stiffness"])
+
+    @stiffness.setter
+    def stiffness(self, value: float) -> None:
+        self._set("stiffness", "stiffness", value)
+
+    @property
+    def damping(self) -> float:
+        """c (N s/m)."""
+        return float(self.record["damping"])
+
+    @damping.setter
+    def damping(self, value: float) -> None:
+        self._set("damping", "damping", value)
 
     def to_dict(self) -> dict:
         return {
@@ -65,52 +115,13 @@ class SpringJoint(Joint):
             "damping": self.damping,
         }
 
-    # --- the force ----------------------------------------------------------------------------
-    def _arm(self, world, i: int, anchor: np.ndarray, angle: float) -> tuple[float, float]:
-        qx = anchor[0] - world.local_com[i, 0]
-        qy = anchor[1] - world.local_com[i, 1]
-        c, s = math.cos(angle), math.sin(angle)
-        return float(c * qx - s * qy), float(s * qx + c * qy)
-
-    def force_on_b(self, world, p, v, phi, w) -> tuple[float, float, tuple, tuple]:
-        """Spring + damper force on b (N) at the state (p, v, phi, w), and the two arms (m)."""
-        ia, ib = self.ia, self.ib
-        ra = self._arm(world, ia, self.anchor_a, float(phi[ia]))
-        rb = self._arm(world, ib, self.anchor_b, float(phi[ib]))
-        dx = float(p[ib, 0] + rb[0] - p[ia, 0] - ra[0])
-        dy = float(p[ib, 1] + rb[1] - p[ia, 1] - ra[1])
-        length = math.hypot(dx, dy)
-        if length <= 1e-12:
-            return 0.0, 0.0, ra, rb
-        ux, uy = dx / length, dy / length
-        # relative velocity of the anchors: vb + wb x rb - va - wa x ra
-        wa, wb = float(w[ia]), float(w[ib])
-        rvx = float(v[ib, 0] - wb * rb[1] - v[ia, 0] + wa * ra[1])
-        rvy = float(v[ib, 1] + wb * rb[0] - v[ia, 1] - wa * ra[0])
-        magnitude = -self.stiffness * (length - self.rest_length) - self.damping * (
-            rvx * ux + rvy * uy
-        )
-        return magnitude * ux, magnitude * uy, ra, rb
-
-    def accumulate(self, world, p, v, phi, w, f, tau) -> None:
-        """Add the spring's forces and torques at the state (p, v, phi, w) into f and tau."""
-        fx, fy, ra, rb = self.force_on_b(world, p, v, phi, w)
-        ia, ib = self.ia, self.ib
-        f[ib, 0] += fx
-        f[ib, 1] += fy
-        tau[ib] += cross(rb[0], rb[1], fx, fy)
-        f[ia, 0] -= fx
-        f[ia, 1] -= fy
-        tau[ia] -= cross(ra[0], ra[1], fx, fy)
-
     def length(self, world=None) -> float:
         """Current distance between the anchors (m)."""
-        pa, pb = self.world_anchors(world)
-        return float(math.hypot(*(pb - pa)))
+        return self.anchor_distance(world)
 
     def potential_energy(self, world=None) -> float:
         """k x^2 / 2 with x = |d| - L (J)."""
-        x = self.length(world) - self.rest_length
+        x = self.length(world) - self.record["length"]
         return 0.5 * self.stiffness * x * x
 
     def anchor_error(self, world=None) -> float:

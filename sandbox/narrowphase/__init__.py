@@ -1,15 +1,14 @@
 """Narrowphase: contact manifolds for the shape pairs the broadphase found (slides, "Collision
 Detection Output": for each contact a point, a normal and a penetration distance).
 
-``collide`` takes the flattened shape arrays of ``docs/architecture.md`` (geometry relative to
-each body's centre of mass, in the body frame) and returns a :class:`sandbox.contact.Manifolds`
-with at most one manifold per pair and at most two points per manifold:
+:func:`collide_into` writes one :data:`sandbox.records.CONTACT` record per touching pair of
+shapes (geometry about each body's centre of mass, in the body frame), at most two points each:
 
 - ``normal``: unit vector pointing from shape a's body to shape b's body;
-- ``point``: world-frame contact points, midway between the two surfaces;
-- ``depth``: penetration per point (> 0 overlapping); points with ``depth >= -margin`` are kept,
+- ``points[j]["point"]``: world-frame contact points, midway between the two surfaces;
+- ``points[j]["depth"]``: penetration per point (> 0 overlapping); points with ``depth >= -margin`` are kept,
   so touching shapes give contacts and ``margin > 0`` adds speculative contacts;
-- ``feature``: ids that stay the same while the same features touch (0 for circle contacts,
+- ``points[j]["feature"]``: ids that stay the same while the same features touch (0 for circle contacts,
   see :mod:`sandbox.narrowphase.polygons` for polygons); unused second slots hold -1;
 - ``friction``, ``restitution``: products of the two shapes' values.
 
@@ -23,75 +22,64 @@ import math
 
 import numpy as np
 
-from sandbox.contact import (
-    DEPTH,
-    G_FRICTION,
-    G_NX,
-    G_NY,
-    G_POINT,
-    G_RESTITUTION,
-    G_STRIDE,
-    GEOM_COLS,
-    I_A,
-    I_B,
-    I_COUNT,
-    I_FEATURE,
-    I_SA,
-    I_SB,
-    INT_COLS,
-    X,
-    Y,
-)
-from sandbox.geometry_arrays import (
-    P_NX,
-    P_NY,
-    P_X,
-    P_Y,
-    S_BODY,
-    S_BOUND,
-    S_CX,
-    S_CY,
-    S_FRICTION,
-    S_KIND,
-    S_RADIUS,
-    S_RESTITUTION,
-    S_VCOUNT,
-    S_VSTART,
-)
 from sandbox.jit import njit
+from sandbox.manifolds import Manifolds
+from sandbox.math2d import rotate
 from sandbox.narrowphase.circles import TINY, circle_circle, polygon_circle
 from sandbox.narrowphase.polygons import polygon_polygon
+from sandbox.records import CIRCLE, CONTACT, JOINT, POLYGON
 
-CIRCLE, POLYGON = 0, 1
-
-__all__ = ["CIRCLE", "POLYGON", "collide", "collide_arrays", "collide_packed", "collide_rows"]
+__all__ = ["collide", "collide_into", "joined"]
 
 
 @njit
-def place_polygons(shape_int, poly, com, cs, wp) -> None:
-    """World frame of every polygon's vertices (p + R(c, s) q) and edge normals (R(c, s) n),
-    into the rows of ``wp`` (V, 4) that ``poly`` uses: once per shape, not once per pair."""
-    for k in range(shape_int.shape[0]):
-        if shape_int[k, S_KIND] != POLYGON:
+def place_polygons(shapes, vertices, bodies):
+    """World frame of every polygon's vertices (p + R q) and edge normals (R n), as rows
+    ``[x, y, nx, ny]`` (V, 4) in the order of ``vertices``: once per shape, not once per pair."""
+    wp = np.empty((vertices.shape[0], 4))
+    for k in range(shapes.shape[0]):
+        shape = shapes[k]
+        if shape["kind"] != POLYGON:
             continue
-        b = shape_int[k, S_BODY]
-        c, s, px, py = cs[b, 0], cs[b, 1], com[b, 0], com[b, 1]
-        v0 = shape_int[k, S_VSTART]
-        for v in range(v0, v0 + shape_int[k, S_VCOUNT]):
-            qx, qy = poly[v, P_X], poly[v, P_Y]
-            wp[v, P_X] = px + c * qx - s * qy
-            wp[v, P_Y] = py + s * qx + c * qy
-            qx, qy = poly[v, P_NX], poly[v, P_NY]
-            wp[v, P_NX] = c * qx - s * qy
-            wp[v, P_NY] = s * qx + c * qy
+        body = bodies[shape["body"]]
+        c, s = body["cs"][0], body["cs"][1]
+        first = shape["first_vertex"]
+        for v in range(first, first + shape["vertex_count"]):
+            q, n = vertices[v]["point"], vertices[v]["normal"]
+            x, y = rotate(c, s, q[0], q[1])
+            wp[v, 0], wp[v, 1] = body["com"][0] + x, body["com"][1] + y
+            wp[v, 2], wp[v, 3] = rotate(c, s, n[0], n[1])
+    return wp
 
 
 @njit
-def _fallback_normal(i, j, bi, bj, com):
+def joined(joints, n_bodies: int, a: int, b: int) -> bool:
+    """Whether bodies a and b share a joint (binary search of ``joints["sorted_key"]``):
+    joined bodies do not collide (as in the pymunk bridge)."""
+    key = min(a, b) * n_bodies + max(a, b)
+    lo, hi = 0, joints.shape[0]
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if joints[mid]["sorted_key"] < key:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo < joints.shape[0] and joints[lo]["sorted_key"] == key
+
+
+@njit
+def circle_center(shape, body) -> tuple[float, float]:
+    """World centre of a circle shape: com + R q."""
+    x, y = rotate(body["cs"][0], body["cs"][1], shape["center"][0], shape["center"][1])
+    return body["com"][0] + x, body["com"][1] + y
+
+
+@njit
+def fallback_normal(i: int, j: int, body_i, body_j) -> tuple[float, float]:
     """Normal for coincident circle centres: from body a's centre of mass to body b's, or, when
     those coincide too, +y / -y by shape index (so swapping the pair flips it)."""
-    dx = com[bj, 0] - com[bi, 0]
-    dy = com[bj, 1] - com[bi, 1]
+    dx = body_j["com"][0] - body_i["com"][0]
+    dy = body_j["com"][1] - body_i["com"][1]
     d = math.sqrt(dx * dx + dy * dy)
     if d > TINY:
         return dx / d, dy / d
@@ -99,189 +87,100 @@ def _fallback_normal(i, j, bi, bj, com):
 
 
 @njit
-def collide_rows(pairs, npairs, shape_int, shape_float, poly, com, cs, margin, ints, geoms):
-    """Contact manifolds of the shape pairs ``pairs[:npairs]`` (packed shape arrays,
-    ``sandbox.geometry_arrays``) at the bodies' current poses, written into contact rows
-    (``sandbox.contact``: ``ints`` and the narrowphase columns of ``geoms``), at most one per
-    pair, in pair order. Returns the number of manifolds.
+def within_reach(shape_i, shape_j, body_i, body_j, margin: float) -> bool:
+    """The shapes lie within circles of radius ``bound`` about the centres of mass: apart by
+    more than the margin (and a hair, for rounding), they cannot touch."""
+    dx = body_j["com"][0] - body_i["com"][0]
+    dy = body_j["com"][1] - body_i["com"][1]
+    reach = shape_i["bound"] + shape_j["bound"] + margin
+    return dx * dx + dy * dy <= reach * reach * (1.0 + 1e-9) + 1e-12
 
-    Per pair: circle-circle and polygon-circle (:mod:`~sandbox.narrowphase.circles`),
-    polygon-polygon (:mod:`~sandbox.narrowphase.polygons`). Everything a pair needs is read
-    here and handed on as numbers (and the one array of world-frame polygons): every array a
-    compiled helper receives costs a reference count update per call, more than a circle pair's
-    arithmetic.
-    """
-    wp = np.empty((poly.shape[0], 4))
-    place_polygons(shape_int, poly, com, cs, wp)
-    n = 0
+
+@njit
+def collide_pair(i, j, shapes, wp, bodies, margin):
+    """The manifold of shapes i and j: ``(count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1)``.
+
+    Circle-circle and polygon-circle (:mod:`~sandbox.narrowphase.circles`), polygon-polygon
+    (:mod:`~sandbox.narrowphase.polygons`)."""
+    shape_i, shape_j = shapes[i], shapes[j]
+    body_i, body_j = bodies[shape_i["body"]], bodies[shape_j["body"]]
+    if shape_i["kind"] == CIRCLE and shape_j["kind"] == CIRCLE:
+        xi, yi = circle_center(shape_i, body_i)
+        xj, yj = circle_center(shape_j, body_j)
+        fx = fy = 0.0  # the normal for coincident centres, only worked out when needed
+        if (xj - xi) ** 2 + (yj - yi) ** 2 <= 4.0 * TINY * TINY:
+            fx, fy = fallback_normal(i, j, body_i, body_j)
+        count, nx, ny, x0, y0, d0 = circle_circle(
+            xi, yi, shape_i["radius"], xj, yj, shape_j["radius"], fx, fy, margin
+        )
+        return count, nx, ny, x0, y0, d0, 0, 0.0, 0.0, 0.0, -1
+    if shape_j["kind"] == CIRCLE:
+        xj, yj = circle_center(shape_j, body_j)
+        first, n = shape_i["first_vertex"], shape_i["vertex_count"]
+        count, nx, ny, x0, y0, d0 = polygon_circle(wp, first, n, xj, yj, shape_j["radius"], margin)
+        return count, nx, ny, x0, y0, d0, 0, 0.0, 0.0, 0.0, -1
+    if shape_i["kind"] == CIRCLE:
+        xi, yi = circle_center(shape_i, body_i)
+        first, n = shape_j["first_vertex"], shape_j["vertex_count"]
+        count, nx, ny, x0, y0, d0 = polygon_circle(wp, first, n, xi, yi, shape_i["radius"], margin)
+        return count, -nx, -ny, x0, y0, d0, 0, 0.0, 0.0, 0.0, -1  # the normal from a to b
+    return polygon_polygon(
+        wp,
+        shape_i["first_vertex"],
+        shape_i["vertex_count"],
+        shape_j["first_vertex"],
+        shape_j["vertex_count"],
+        i < j,
+        margin,
+    )
+
+
+@njit
+def collide_into(pairs, npairs, shapes, vertices, bodies, joints, margin, contacts) -> int:
+    """Contact manifolds of the shape pairs ``pairs[:npairs]`` at the bodies' current poses,
+    written in pair order into ``contacts`` (CONTACT records), at most one per pair; pairs of
+    one body, of joined bodies or out of reach are skipped. Returns how many were written.
+
+    ``margin`` (m) keeps points with a gap up to ``margin`` (speculative contacts)."""
+    wp = place_polygons(shapes, vertices, bodies)
+    n_bodies = bodies.shape[0]
+    k = 0
     for q in range(npairs):
         i, j = pairs[q, 0], pairs[q, 1]
-        bi, bj = shape_int[i, S_BODY], shape_int[j, S_BODY]
-        if bi == bj:  # shapes of one body never collide
+        a, b = shapes[i]["body"], shapes[j]["body"]
+        if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
             continue
-        pxi, pyi, pxj, pyj = com[bi, 0], com[bi, 1], com[bj, 0], com[bj, 1]
-        # the shapes lie within circles of radius "bound" about the centres of mass: apart by
-        # more than the margin (and a hair, for rounding), they cannot touch
-        dx, dy = pxj - pxi, pyj - pyi
-        reach = shape_float[i, S_BOUND] + shape_float[j, S_BOUND] + margin
-        if dx * dx + dy * dy > reach * reach * (1.0 + 1e-9) + 1e-12:
+        if joints.shape[0] > 0 and joined(joints, n_bodies, a, b):
             continue
-        kind_i, kind_j = shape_int[i, S_KIND], shape_int[j, S_KIND]
-        ri, rj = shape_float[i, S_RADIUS], shape_float[j, S_RADIUS]
-        # circle centres in the world: com + R(cs) q
-        ci, si, cj, sj = cs[bi, 0], cs[bi, 1], cs[bj, 0], cs[bj, 1]
-        qx, qy = shape_float[i, S_CX], shape_float[i, S_CY]
-        cxi, cyi = pxi + ci * qx - si * qy, pyi + si * qx + ci * qy
-        qx, qy = shape_float[j, S_CX], shape_float[j, S_CY]
-        cxj, cyj = pxj + cj * qx - sj * qy, pyj + sj * qx + cj * qy
-        x1 = y1 = d1 = 0.0
-        f0 = f1 = 0
-        if kind_i == CIRCLE and kind_j == CIRCLE:
-            fx = fy = 0.0  # the normal for coincident centres, only worked out when needed
-            ex, ey = cxj - cxi, cyj - cyi
-            if ex * ex + ey * ey <= 4.0 * TINY * TINY:
-                fx, fy = _fallback_normal(i, j, bi, bj, com)
-            cnt, nx, ny, x0, y0, d0 = circle_circle(cxi, cyi, ri, cxj, cyj, rj, fx, fy, margin)
-        elif kind_j == CIRCLE:
-            o, c = shape_int[i, S_VSTART], shape_int[i, S_VCOUNT]
-            cnt, nx, ny, x0, y0, d0 = polygon_circle(wp, o, c, cxj, cyj, rj, margin)
-        elif kind_i == CIRCLE:
-            o, c = shape_int[j, S_VSTART], shape_int[j, S_VCOUNT]
-            cnt, nx, ny, x0, y0, d0 = polygon_circle(wp, o, c, cxi, cyi, ri, margin)
-            nx, ny = -nx, -ny  # the polygon is shape b: normal from a (circle) to b
+        count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = collide_pair(
+            i, j, shapes, wp, bodies, margin
+        )
+        if count == 0:
+            continue
+        c = contacts[k]
+        c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
+        c["normal"][0], c["normal"][1] = nx, ny
+        c["friction"] = shapes[i]["friction"] * shapes[j]["friction"]
+        c["restitution"] = shapes[i]["restitution"] * shapes[j]["restitution"]
+        p = c["points"][0]
+        p["point"][0], p["point"][1], p["depth"], p["feature"] = x0, y0, d0, f0
+        p = c["points"][1]
+        if count == 2:
+            p["point"][0], p["point"][1], p["depth"], p["feature"] = x1, y1, d1, f1
         else:
-            cnt, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = polygon_polygon(
-                wp, shape_int[i, S_VSTART], shape_int[i, S_VCOUNT],
-                shape_int[j, S_VSTART], shape_int[j, S_VCOUNT], i < j, margin,
-            )  # fmt: skip
-        if cnt == 0:
-            continue
-        ints[n, I_A], ints[n, I_B] = bi, bj
-        ints[n, I_SA], ints[n, I_SB], ints[n, I_COUNT] = i, j, cnt
-        ints[n, I_FEATURE], ints[n, I_FEATURE + 1] = f0, (f1 if cnt == 2 else -1)
-        geoms[n, G_NX], geoms[n, G_NY] = nx, ny
-        geoms[n, G_FRICTION] = shape_float[i, S_FRICTION] * shape_float[j, S_FRICTION]
-        geoms[n, G_RESTITUTION] = shape_float[i, S_RESTITUTION] * shape_float[j, S_RESTITUTION]
-        p = G_POINT
-        geoms[n, p + X], geoms[n, p + Y], geoms[n, p + DEPTH] = x0, y0, d0
-        p = G_POINT + G_STRIDE
-        if cnt == 2:
-            geoms[n, p + X], geoms[n, p + Y], geoms[n, p + DEPTH] = x1, y1, d1
-        else:
-            geoms[n, p + X] = geoms[n, p + Y] = geoms[n, p + DEPTH] = 0.0
-        n += 1
-    return n
+            p["point"][0] = p["point"][1] = p["depth"] = 0.0
+            p["feature"] = -1
+        k += 1
+    return k
 
 
-@njit
-def collide_packed(pairs, shape_int, shape_float, poly, com, cs, margin):
-    """:func:`collide_rows` for all ``pairs``, as the manifold arrays
-    ``(a, b, sa, sb, normal, count, point, depth, feature, friction, restitution)``."""
-    k = pairs.shape[0]
-    ints = np.empty((k, INT_COLS), dtype=np.int64)
-    geoms = np.empty((k, GEOM_COLS))
-    n = collide_rows(pairs, k, shape_int, shape_float, poly, com, cs, margin, ints, geoms)
-    normal = np.empty((n, 2))
-    point = np.empty((n, 2, 2))
-    depth = np.empty((n, 2))
-    feature = np.empty((n, 2), dtype=np.int64)
-    for i in range(n):
-        normal[i, 0], normal[i, 1] = geoms[i, G_NX], geoms[i, G_NY]
-        for j in range(2):
-            p = G_POINT + G_STRIDE * j
-            point[i, j, 0], point[i, j, 1] = geoms[i, p + X], geoms[i, p + Y]
-            depth[i, j] = geoms[i, p + DEPTH]
-            feature[i, j] = ints[i, I_FEATURE + j]
-    return (
-        ints[:n, I_A].copy(),
-        ints[:n, I_B].copy(),
-        ints[:n, I_SA].copy(),
-        ints[:n, I_SB].copy(),
-        normal,
-        ints[:n, I_COUNT].copy(),
-        point,
-        depth,
-        feature,
-        geoms[:n, G_FRICTION].copy(),
-        geoms[:n, G_RESTITUTION].copy(),
-    )
-
-
-@njit
-def collide_arrays(
-    pairs,
-    shape_body,
-    shape_kind,
-    shape_radius,
-    shape_center,
-    shape_vstart,
-    shape_vcount,
-    verts,
-    normals,
-    shape_friction,
-    shape_restitution,
-    com,
-    cs,
-    margin,
-):
-    """:func:`collide_packed` on the flattened (unpacked) shape arrays."""
-    m, nv = shape_body.shape[0], verts.shape[0]
-    shape_int = np.empty((m, 4), dtype=np.int64)
-    shape_float = np.empty((m, 8))
-    poly = np.empty((nv, 4))
-    for i in range(m):
-        shape_int[i, S_BODY], shape_int[i, S_KIND] = shape_body[i], shape_kind[i]
-        shape_int[i, S_VSTART], shape_int[i, S_VCOUNT] = shape_vstart[i], shape_vcount[i]
-        shape_float[i, S_RADIUS] = shape_radius[i]
-        shape_float[i, S_CX], shape_float[i, S_CY] = shape_center[i, 0], shape_center[i, 1]
-        shape_float[i, S_FRICTION] = shape_friction[i]
-        shape_float[i, S_RESTITUTION] = shape_restitution[i]
-        shape_float[i, S_BOUND] = np.inf
-    for v in range(nv):
-        poly[v, P_X], poly[v, P_Y] = verts[v, 0], verts[v, 1]
-        poly[v, P_NX], poly[v, P_NY] = normals[v, 0], normals[v, 1]
-    return collide_packed(pairs, shape_int, shape_float, poly, com, cs, margin)
-
-
-def collide(
-    pairs: np.ndarray,
-    shape_body: np.ndarray,
-    shape_kind: np.ndarray,
-    shape_radius: np.ndarray,
-    shape_center: np.ndarray,
-    shape_vstart: np.ndarray,
-    shape_vcount: np.ndarray,
-    verts: np.ndarray,
-    normals: np.ndarray,
-    shape_friction: np.ndarray,
-    shape_restitution: np.ndarray,
-    com: np.ndarray,
-    cs: np.ndarray,
-    margin: float = 0.0,
-):
-    """Contact manifolds of the shape ``pairs`` ((k, 2) shape indices) at the bodies' current
-    poses (``com`` (n, 2) in m, ``cs`` (n, 2) the (cos, sin) of each body's angle).
-
-    Returns a :class:`sandbox.contact.Manifolds`; ``margin`` (m) keeps contacts whose gap is up
-    to ``margin`` (speculative contacts), 0 keeps overlapping and touching shapes only.
-    """
-    from sandbox.contact import Manifolds
-
+def collide(pairs, shapes, vertices, bodies, margin: float = 0.0, joints=None):
+    """Contact manifolds of the shape ``pairs`` ((k, 2) shape indices) at the bodies' poses:
+    a :class:`sandbox.contact.Manifolds` over new CONTACT records. ``shapes``, ``vertices``,
+    ``bodies``: SHAPE, VERTEX and BODY records (``bodies`` needs ``com`` and ``cs``);
+    ``margin`` (m) keeps contacts whose gap is up to ``margin``, 0 keeps touching shapes."""
     pairs = np.ascontiguousarray(pairs, dtype=np.int64).reshape(-1, 2)
-    arrays = collide_arrays(
-        pairs,
-        np.ascontiguousarray(shape_body, dtype=np.int64),
-        np.ascontiguousarray(shape_kind, dtype=np.int64),
-        np.ascontiguousarray(shape_radius, dtype=np.float64),
-        np.ascontiguousarray(shape_center, dtype=np.float64).reshape(-1, 2),
-        np.ascontiguousarray(shape_vstart, dtype=np.int64),
-        np.ascontiguousarray(shape_vcount, dtype=np.int64),
-        np.ascontiguousarray(verts, dtype=np.float64).reshape(-1, 2),
-        np.ascontiguousarray(normals, dtype=np.float64).reshape(-1, 2),
-        np.ascontiguousarray(shape_friction, dtype=np.float64),
-        np.ascontiguousarray(shape_restitution, dtype=np.float64),
-        np.ascontiguousarray(com, dtype=np.float64).reshape(-1, 2),
-        np.ascontiguousarray(cs, dtype=np.float64).reshape(-1, 2),
-        float(margin),
-    )
-    return Manifolds(*arrays)
+    contacts = np.zeros(len(pairs), dtype=CONTACT)
+    joints = np.zeros(0, dtype=JOINT) if joints is None else joints
+    k = collide_into(pairs, len(pairs), shapes, vertices, bodies, joints, float(margin), contacts)
+    return Manifolds(contacts, k)

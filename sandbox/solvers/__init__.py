@@ -1,28 +1,19 @@
 """Contact and joint solvers, one module per strategy (slides, "Simultaneous Collision
-Resolution"): ``pairwise`` (each contact once, in turn), ``shock`` (shock propagation) and
-``iterative`` (sequential impulses).
+Resolution"), all over the same CONTACT and JOINT records (:mod:`sandbox.records`):
 
-Every solver module offers the same two functions, called by the world each step:
+- ``pairwise``: each contact once, in turn (the slides' collision algorithm);
+- ``shock``: sequential impulses, then shock propagation layer by layer;
+- ``iterative``: sequential impulses, accumulated and warm-started (box2d-lite).
 
-- ``solve_velocities(world, manifolds, dt, start=None)``: impulses on ``world.vel`` /
-  ``world.omega`` for the contacts (``manifolds``, may be empty) and ``world.joints``; records the
-  impulses it applied in ``manifolds.normal_impulse`` / ``manifolds.tangent_impulse``. ``start``
-  = (vel, omega) at the start of the step, before this step's gravity and forces were added
-  (default: the current velocities): restitution reflects the approach velocity measured there.
-- ``solve_positions(world, manifolds, dt)``: after the positions moved, removes remaining overlap
-  the way ``world.settings.penetration`` names (``half``, ``mass_weighted``, ``impulse``).
+Each module offers ``solve(contacts, k, joints, bodies, context)``, the step's ``solve`` stage
+(:mod:`sandbox.step`); what they share is in :mod:`sandbox.solvers.common`.
 """
 
 from __future__ import annotations
 
-from importlib import import_module
-from types import ModuleType
+from sandbox.solvers import iterative, pairwise, shock
 
-NAMES = ("pairwise", "shock", "iterative")
-
-
-def get(name: str) -> ModuleType:
-    """The solver module called ``name``."""
-    if name not in NAMES:
-        raise ValueError(f"settings.solver: expected one of {', '.join(NAMES)}, got {name!r}")
-    return import_module(f"sandbox.solvers.{name}")
+SOLVERS = {"pairwise": pairwise, "shock": shock, "iterative": iterative}
+NAMES = tuple(SOLVERS)
+# solvers whose impulses carry over from step to step (and so are warm-started)
+KEEPS_IMPULSES = ("shock", "iterative")

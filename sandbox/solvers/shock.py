@@ -6,16 +6,17 @@ layer 0, bodies touching them layer 1, bodies touching those layer 2, and so on 
 search over the contacts). Then:
 
 1. relaxation: ``settings.iterations`` sweeps of sequential impulses over all contacts and
-   joints, as the iterative solver does (accumulated, warm started, with its switches), and
-   its restitution pass;
+   joints, as the iterative solver does (accumulated, warm started, with its switches);
 2. the shock pass: layer by layer from the bottom, each layer's contacts are resolved with the
    bodies of the layer below treated as immovable (infinite mass). Whatever the relaxation left
    of a box sinking into the one below is removed from the upper box alone, so the error cannot
    travel back down: the stack's weight no longer has to be carried by converged impulses.
 
-Within the shock pass each increment only pushes (>= 0, friction within mu times it), so
-bounces from the restitution pass survive. Bodies not connected to the ground (a separate
-layer "infinity") are resolved with their normal masses.
+Within the shock pass each increment only pushes (>= 0, friction within mu times it). Its
+normal pushes are reported with the contact (``bounce_impulse``, which holds what the passes
+after the relaxation added) but not warm-started: one-sided pushes would not balance in the
+next step. Bodies not connected to the ground (a separate layer "infinity") are resolved with
+their normal masses.
 """
 
 from __future__ import annotations
@@ -23,34 +24,37 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.solvers import impulse, iterative
-from sandbox.solvers.impulse import along, apply, effective_mass, load, store
+from sandbox.math2d import cross, effective_mass, exchange, set_velocity, velocity_of
+from sandbox.records import DYNAMIC
+from sandbox.solvers.common import arms, normal_speed
+from sandbox.solvers.iterative import solve as relax
 
 UNREACHED = 1 << 40  # layer of bodies with no path of contacts to a fixed body
 LAYER_SWEEPS = 3  # sweeps over each layer's contacts in the shock pass
 
 
 @njit
-def contact_layers(a, b, fixed):
+def contact_layers(contacts, k: int, bodies):
     """Breadth-first depth of every body from the fixed ones over the contact graph."""
-    n, k = len(fixed), len(a)
+    n = bodies.shape[0]
     degree = np.zeros(n + 1, dtype=np.int64)
     for i in range(k):
-        degree[a[i] + 1] += 1
-        degree[b[i] + 1] += 1
-    start = np.cumsum(degree)  # neighbours of body u: nbr[start[u]:start[u + 1]]
+        degree[contacts[i]["a"] + 1] += 1
+        degree[contacts[i]["b"] + 1] += 1
+    start = np.cumsum(degree)  # neighbours of body u: neighbour[start[u]:start[u + 1]]
     fill = start[:-1].copy()
-    nbr = np.empty(2 * k, dtype=np.int64)
+    neighbour = np.empty(2 * k, dtype=np.int64)
     for i in range(k):
-        nbr[fill[a[i]]] = b[i]
-        fill[a[i]] += 1
-        nbr[fill[b[i]]] = a[i]
-        fill[b[i]] += 1
+        a, b = contacts[i]["a"], contacts[i]["b"]
+        neighbour[fill[a]] = b
+        fill[a] += 1
+        neighbour[fill[b]] = a
+        fill[b] += 1
     layer = np.full(n, UNREACHED, dtype=np.int64)
     queue = np.empty(n, dtype=np.int64)
     head = tail = 0
     for u in range(n):
-        if fixed[u]:
+        if bodies[u]["kind"] != DYNAMIC:
             layer[u] = 0
             queue[tail] = u
             tail += 1
@@ -58,7 +62,7 @@ def contact_layers(a, b, fixed):
         u = queue[head]
         head += 1
         for q in range(start[u], start[u + 1]):
-            w = nbr[q]
+            w = neighbour[q]
             if layer[w] == UNREACHED:
                 layer[w] = layer[u] + 1
                 queue[tail] = w
@@ -67,69 +71,71 @@ def contact_layers(a, b, fixed):
 
 
 @njit
-def shock_pass(
-    order, level, a, b, normal, count, friction, r1, r2, bias, pn, pt, layer,
-    vel, omega, inv_mass, inv_moment, sweeps,
-) -> None:  # fmt: skip
-    """Resolve the manifolds layer by layer (``order`` sorted by ``level``), the lower body of
-    a contact between two layers frozen (1/m = 1/I = 0)."""
-    v = np.empty(6)
+def push_layer(c, layer, bodies) -> None:
+    """One contact of the shock pass: the lower body frozen (1/m = 1/I = 0), pushes only."""
+    a, b = c["a"], c["b"]
+    nx, ny = c["normal"][0], c["normal"][1]
+    im_a, ii_a, im_b, ii_b = c["inv_mass_a"], c["inv_moment_a"], c["inv_mass_b"], c["inv_moment_b"]
+    if layer[a] < layer[b]:
+        im_a = ii_a = 0.0  # body a is below: immovable for this contact
+    elif layer[b] < layer[a]:
+        im_b = ii_b = 0.0
+    mass = (im_a, ii_a, im_b, ii_b)
+    va, vb = velocity_of(bodies, a), velocity_of(bodies, b)
+    for j in range(c["count"]):
+        p = c["points"][j]
+        ra, rb = arms(p)
+        kn = effective_mass(
+            im_a, ii_a, im_b, ii_b, cross(ra[0], ra[1], nx, ny), cross(rb[0], rb[1], nx, ny)
+        )
+        if kn <= 0.0:
+            continue
+        dp = max((p["bias"] - normal_speed(va, vb, p, nx, ny)) / kn, 0.0)
+        if dp == 0.0:
+            continue
+        p["bounce_impulse"] += dp
+        va, vb = exchange(va, vb, mass, ra, rb, dp * nx, dp * ny)
+        # friction against the same frozen body, at most mu dp
+        kt = effective_mass(
+            im_a, ii_a, im_b, ii_b, cross(ra[0], ra[1], ny, -nx), cross(rb[0], rb[1], ny, -nx)
+        )
+        limit = c["friction"] * dp
+        dt = min(max(-normal_speed(va, vb, p, ny, -nx) / kt, -limit), limit)
+        p["tangent_impulse"] += dt
+        va, vb = exchange(va, vb, mass, ra, rb, dt * ny, -dt * nx)
+    set_velocity(bodies, a, va)
+    set_velocity(bodies, b, vb)
+
+
+@njit
+def shock_pass(contacts, k: int, bodies) -> int:
+    """Resolve the contacts layer by layer from the ground up (:func:`push_layer`,
+    ``LAYER_SWEEPS`` sweeps per layer). Returns the number of layers reached."""
+    layer = contact_layers(contacts, k, bodies)
+    level = np.empty(k, dtype=np.int64)
+    for i in range(k):
+        level[i] = max(layer[contacts[i]["a"]], layer[contacts[i]["b"]])
+    order = np.argsort(level, kind="mergesort")  # stable: contacts of a layer in pair order
     s = 0
-    while s < len(order):
+    while s < k:
         e = s
-        while e < len(order) and level[order[e]] == level[order[s]]:
+        while e < k and level[order[e]] == level[order[s]]:
             e += 1
-        for _ in range(sweeps):
+        for _ in range(LAYER_SWEEPS):
             for q in range(s, e):
-                i = order[q]
-                ia, ib = a[i], b[i]
-                nx, ny = normal[i, 0], normal[i, 1]
-                im1, ii1, im2, ii2 = inv_mass[ia], inv_moment[ia], inv_mass[ib], inv_moment[ib]
-                if layer[ia] < layer[ib]:
-                    im1 = ii1 = 0.0  # body 1 is below: immovable for this contact
-                elif layer[ib] < layer[ia]:
-                    im2 = ii2 = 0.0
-                mass = (im1, ii1, im2, ii2)
-                load(v, vel, omega, ia, ib)
-                for j in range(count[i]):
-                    r1x, r1y, r2x, r2y = r1[i, j, 0], r1[i, j, 1], r2[i, j, 0], r2[i, j, 1]
-                    k = effective_mass(im1, ii1, im2, ii2, r1x, r1y, r2x, r2y, nx, ny)
-                    if k <= 0.0:
-                        continue
-                    dp = max((bias[i, j] - along(i, j, nx, ny, r1, r2, v)) / k, 0.0)
-                    if dp == 0.0:
-                        continue
-                    pn[i, j] += dp
-                    apply(i, j, dp * nx, dp * ny, r1, r2, mass, v)
-                    # friction against the same frozen body, at most mu dp
-                    k = effective_mass(im1, ii1, im2, ii2, r1x, r1y, r2x, r2y, ny, -nx)
-                    limit = friction[i] * dp
-                    dt = min(max(-along(i, j, ny, -nx, r1, r2, v) / k, -limit), limit)
-                    pt[i, j] += dt
-                    apply(i, j, dt * ny, -dt * nx, r1, r2, mass, v)
-                store(v, vel, omega, ia, ib)
+                push_layer(contacts[order[q]], layer, bodies)
         s = e
+    top = 0
+    for i in range(k):
+        if level[i] < UNREACHED:
+            top = max(top, level[i])
+    return top
 
 
-def solve_velocities(world, manifolds, dt: float, start=None) -> None:
-    """Relaxation sweeps (contacts and joints) and restitution, then the shock pass. ``start``:
-    the velocities at the start of the step, for the bounces (see :func:`iterative.relax`)."""
-    # the relaxation remembers its own impulses for warm starting: the shock pass's
-    # one-sided pushes (still reported in the manifolds) would not balance in the next step
-    m = iterative.relax(world, manifolds, dt, start)
-    if len(m):
-        # lever arms and velocity targets of the contacts (positions only: the same as the
-        # relaxation's)
-        cons = impulse.build(world, m, dt)
-        layer = contact_layers(m.a, m.b, world.inv_mass == 0.0)
-        level = np.maximum(layer[m.a], layer[m.b])
-        order = np.argsort(level, kind="stable")
-        world.stats["shock_layers"] = int(level[level < UNREACHED].max(initial=0))
-        shock_pass(
-            order, level, m.a, m.b, m.normal, m.count, m.friction, cons.r1, cons.r2, cons.bias,
-            m.normal_impulse, m.tangent_impulse, layer, world.vel, world.omega, world.inv_mass,
-            world.inv_moment, LAYER_SWEEPS,
-        )  # fmt: skip
-
-
-solve_positions = iterative.solve_positions
+@njit
+def solve(contacts, k: int, joints, bodies, context) -> None:
+    """Relaxation sweeps (contacts and joints), then the shock pass."""
+    ctx = context[0]
+    relax(contacts, k, joints, bodies, context)
+    if k > 0:
+        ctx["shock_layers"] = shock_pass(contacts, k, bodies)

@@ -1,0 +1,46 @@
+"""The step context: what every compiled stage reads about the step (dt, gravity, the settings
+as numbers), one CONTEXT record per world (:data:`sandbox.records.CONTEXT`), filled again
+whenever a setting, gravity or dt changes. The stages also report their counters into it."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from sandbox.integrators import CODES as INTEGRATORS
+from sandbox.orientation import NAMES as ORIENTATIONS
+from sandbox.penetration import METHODS as PENETRATIONS
+from sandbox.solvers import KEEPS_IMPULSES
+
+# soft-step settings and their defaults, for a Settings that does not know them yet
+SOFT_DEFAULTS = (
+    ("substeps", 4),
+    ("contact_hertz", 30.0),
+    ("contact_damping_ratio", 10.0),
+    ("joint_hertz", 60.0),
+    ("joint_damping_ratio", 2.0),
+    ("max_push_speed", 3.0),
+)
+
+
+def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
+    """Write ``settings``, ``gravity`` (m/s^2) and ``dt`` (s) into the CONTEXT record ``ctx``
+    (kept as they are: the broadphase's sort axis and the contact sets' bookkeeping)."""
+    s = settings
+    ctx["dt"], ctx["inv_dt"] = dt, 1.0 / dt
+    ctx["gravity"] = gravity
+    ctx["orientation"] = ORIENTATIONS[s.orientation]
+    ctx["integrator"] = INTEGRATORS[s.integrator]
+    ctx["renormalise"] = s.renormalise
+    ctx["iterations"] = s.iterations
+    ctx["position_iterations"] = s.position_iterations
+    ctx["accumulate"] = s.accumulate_impulses
+    # warm starting needs accumulated impulses and a solver that keeps them between steps
+    ctx["warm_start"] = s.warm_start and s.accumulate_impulses and s.solver in KEEPS_IMPULSES
+    ctx["position_correction"] = s.position_correction
+    ctx["penetration"] = PENETRATIONS.index(s.penetration)
+    ctx["slop"], ctx["baumgarte"] = s.slop, s.baumgarte
+    ctx["restitution_threshold"] = s.restitution_threshold
+    ctx["contact_margin"] = s.contact_margin
+    for key, default in SOFT_DEFAULTS:
+        ctx[key] = getattr(s, key, default)
+    ctx["diverged"] = -1

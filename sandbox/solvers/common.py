@@ -1,0 +1,235 @@
+"""What every contact solver shares (as Solver2D's ``solve_common.c``): prepare the contacts,
+warm start them from the last step, bounce, and report.
+
+Per contact point (:data:`sandbox.records.CONTACT_POINT`), as box2d-lite and Box2D keep them:
+
+- ``anchor_a``, ``anchor_b``: r_a, r_b from each centre of mass to the point (world frame);
+  ``local_a``, ``local_b`` the same in each body's frame (the position pass turns them again);
+- ``normal_mass``, ``tangent_mass``: 1 / k along the normal and the tangent t = (n_y, -n_x),
+  with the collision equation's k (slides, "Collision Equation", step 1);
+- ``bias``: the normal velocity the constraint asks for, v_r . n >= bias (m/s): the gap closed
+  in this step for speculative contacts (depth < 0), else an optional Baumgarte push;
+- ``approach_speed``: v_r . n when the step began, before this step's gravity and forces (the
+  prepare stage runs before the velocities are integrated, as in Box2D), for restitution;
+- ``normal_impulse``, ``tangent_impulse``: the accumulated impulses (N s),
+  ``max_normal_impulse`` the largest normal impulse of the step, ``bounce_impulse`` the
+  restitution pass's.
+
+Conventions: the normal n points from body a to body b; v_r is b's contact point's velocity
+seen from a's, so v_r . n < 0 means approaching.
+"""
+
+from __future__ import annotations
+
+from sandbox.jit import njit
+from sandbox.math2d import (
+    cross,
+    effective_mass,
+    exchange,
+    inverse_or_zero,
+    relative_velocity,
+    set_velocity,
+    unrotate,
+    velocity_of,
+)
+
+BLOCK_CONDITION = 1000.0  # the block solver is used while k11^2 < 1000 det K (Box2D's limit)
+
+
+@njit
+def masses(c) -> tuple[float, float, float, float]:
+    """(1/m_a, 1/I_a, 1/m_b, 1/I_b) of a contact, as its prepare stage copied them."""
+    return c["inv_mass_a"], c["inv_moment_a"], c["inv_mass_b"], c["inv_moment_b"]
+
+
+@njit
+def arms(p) -> tuple[tuple[float, float], tuple[float, float]]:
+    """r_a and r_b of a contact point, as two (x, y) tuples."""
+    return (p["anchor_a"][0], p["anchor_a"][1]), (p["anchor_b"][0], p["anchor_b"][1])
+
+
+@njit
+def normal_speed(va, vb, p, nx: float, ny: float) -> float:
+    """v_r . n at a contact point for the velocities va, vb (slides, "Collision Effects")."""
+    ra, rb = arms(p)
+    dvx, dvy = relative_velocity(va, ra[0], ra[1], vb, rb[0], rb[1])
+    return dvx * nx + dvy * ny
+
+
+@njit
+def prepare_point(c, p, bodies, inv_dt: float, beta: float, slop: float) -> None:
+    """Lever arms, effective masses, velocity target and approach speed of one used point."""
+    a, b = bodies[c["a"]], bodies[c["b"]]
+    nx, ny = c["normal"][0], c["normal"][1]
+    im_a, ii_a, im_b, ii_b = masses(c)
+    rax, ray = p["point"][0] - a["com"][0], p["point"][1] - a["com"][1]
+    rbx, rby = p["point"][0] - b["com"][0], p["point"][1] - b["com"][1]
+    p["anchor_a"][0], p["anchor_a"][1] = rax, ray
+    p["anchor_b"][0], p["anchor_b"][1] = rbx, rby
+    p["local_a"][0], p["local_a"][1] = unrotate(a["cs"][0], a["cs"][1], rax, ray)
+    p["local_b"][0], p["local_b"][1] = unrotate(b["cs"][0], b["cs"][1], rbx, rby)
+    # slides, "Collision Equation", step 1: k = 1/m_a + 1/m_b + (r_a x n)^2/I_a + (r_b x n)^2/I_b
+    kn = effective_mass(im_a, ii_a, im_b, ii_b, cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny))
+    kt = effective_mass(im_a, ii_a, im_b, ii_b, cross(rax, ray, ny, -nx), cross(rbx, rby, ny, -nx))
+    p["normal_mass"], p["tangent_mass"] = inverse_or_zero(kn), inverse_or_zero(kt)
+    # the velocities have not had this step's gravity yet: the speed the bodies arrived with
+    p["approach_speed"] = normal_speed(
+        velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"]), p, nx, ny
+    )
+    d = p["depth"]
+    p["bias"] = d * inv_dt if d < 0.0 else beta * inv_dt * max(d - slop, 0.0)
+
+
+@njit
+def prepare_block(c) -> None:
+    """The 2x2 effective mass matrix K of a two-point manifold, kept as its inverse when it is
+    well conditioned (Box2D's block solver, see :func:`sandbox.solvers.iterative.block_normal`)."""
+    c["use_block"] = False
+    if c["count"] != 2:
+        return
+    nx, ny = c["normal"][0], c["normal"][1]
+    im_a, ii_a, im_b, ii_b = masses(c)
+    p0, p1 = c["points"][0], c["points"][1]
+    a1 = cross(p0["anchor_a"][0], p0["anchor_a"][1], nx, ny)  # r_a x n at point 0
+    a2 = cross(p1["anchor_a"][0], p1["anchor_a"][1], nx, ny)  # r_a x n at point 1
+    b1 = cross(p0["anchor_b"][0], p0["anchor_b"][1], nx, ny)
+    b2 = cross(p1["anchor_b"][0], p1["anchor_b"][1], nx, ny)
+    k11 = effective_mass(im_a, ii_a, im_b, ii_b, a1, b1)
+    k22 = effective_mass(im_a, ii_a, im_b, ii_b, a2, b2)
+    k12 = im_a + im_b + ii_a * a1 * a2 + ii_b * b1 * b2
+    det = k11 * k22 - k12 * k12
+    if k11 * k11 < BLOCK_CONDITION * det:
+        c["use_block"] = True
+        c["k12"] = k12
+        c["block_mass"][0], c["block_mass"][1], c["block_mass"][2] = (
+            k22 / det,
+            -k12 / det,
+            k11 / det,
+        )
+
+
+@njit
+def prepare_contacts(contacts, k: int, bodies, beta: float, context) -> None:
+    """Prepare the first ``k`` contacts: copy the bodies' inverse masses, zero the impulses,
+    then :func:`prepare_point` and :func:`prepare_block`. ``beta``: the Baumgarte factor of the
+    velocity bias (the rigid solvers pass 0 and fix overlap on positions instead)."""
+    ctx = context[0]
+    inv_dt, slop = ctx["inv_dt"], ctx["slop"]
+    for i in range(k):
+        c = contacts[i]
+        a, b = bodies[c["a"]], bodies[c["b"]]
+        c["inv_mass_a"], c["inv_moment_a"] = a["inv_mass"], a["inv_moment"]
+        c["inv_mass_b"], c["inv_moment_b"] = b["inv_mass"], b["inv_moment"]
+        c["rebound"] = 0.0
+        for j in range(2):
+            p = c["points"][j]
+            p["normal_impulse"] = p["tangent_impulse"] = 0.0
+            p["max_normal_impulse"] = p["bounce_impulse"] = 0.0
+            if j < c["count"]:
+                prepare_point(c, p, bodies, inv_dt, beta, slop)
+        prepare_block(c)
+
+
+@njit
+def before(sa0: int, sb0: int, sa: int, sb: int) -> bool:
+    """The shape pair (sa0, sb0) comes before (sa, sb)."""
+    return sa0 < sa or (sa0 == sa and sb0 < sb)
+
+
+@njit
+def match_previous(contacts, k: int, previous, k_old: int) -> int:
+    """Warm starting (box2d-lite's ``Arbiter::Update``): give each point of this step the
+    impulses of the last step's point with the same shapes and feature id. Both lists are in
+    pair order, sorted by (shape a, shape b), so one forward walk finds every match (a merge).
+    Returns the number of points matched."""
+    found = 0
+    q = 0  # walks forward through the last step's contacts
+    for i in range(k):
+        c = contacts[i]
+        sa, sb = c["shape_a"], c["shape_b"]
+        if q > 0 and not before(previous[q - 1]["shape_a"], previous[q - 1]["shape_b"], sa, sb):
+            lo, hi = 0, q  # not in pair order (hand-made contacts): binary search
+            while lo < hi:
+                mid = (lo + hi) // 2
+                if before(previous[mid]["shape_a"], previous[mid]["shape_b"], sa, sb):
+                    lo = mid + 1
+                else:
+                    hi = mid
+            q = lo
+        while q < k_old and before(previous[q]["shape_a"], previous[q]["shape_b"], sa, sb):
+            q += 1
+        if q == k_old or previous[q]["shape_a"] != sa or previous[q]["shape_b"] != sb:
+            continue
+        old = previous[q]
+        for j in range(c["count"]):
+            p = c["points"][j]
+            for jj in range(old["count"]):
+                if old["points"][jj]["feature"] == p["feature"]:
+                    p["normal_impulse"] = old["points"][jj]["normal_impulse"]
+                    p["tangent_impulse"] = old["points"][jj]["tangent_impulse"]
+                    found += 1
+                    break
+    return found
+
+
+@njit
+def warm_start(contacts, k: int, bodies) -> None:
+    """Apply last step's accumulated impulses P = p_n n + p_t t again (box2d-lite PreStep)."""
+    for i in range(k):
+        c = contacts[i]
+        nx, ny = c["normal"][0], c["normal"][1]
+        mass = masses(c)
+        va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
+        for j in range(c["count"]):
+            p = c["points"][j]
+            pn, pt = p["normal_impulse"], p["tangent_impulse"]
+            ra, rb = arms(p)
+            va, vb = exchange(va, vb, mass, ra, rb, pn * nx + pt * ny, pn * ny - pt * nx)
+        set_velocity(bodies, c["a"], va)
+        set_velocity(bodies, c["b"], vb)
+
+
+@njit
+def restitution(contacts, k: int, bodies, threshold: float) -> None:
+    """Bounce: v_r . n = -e v_r0 . n, with the approach speed v_r0 . n of the start of the step.
+
+    As Box2D's restitution: only points that approached faster than ``threshold`` (m/s) and
+    carried an impulse bounce; slower contacts rest. The total impulse stays >= 0. Measured
+    after gravity, the approach speed would be g dt too fast and every bounce would gain height.
+
+    A speculative point (a gap g = -depth > 0 at the start of the step) bounces here, before it
+    touched; had it bounced at its time of impact, the bodies would end the step (1 + e) g
+    closer. ``rebound`` records that distance for the position stage
+    (:func:`sandbox.penetration.rebound`), so the bounce starts from the surface.
+    """
+    for i in range(k):
+        c = contacts[i]
+        c["rebound"] = 0.0
+        e = c["restitution"]
+        if e == 0.0:
+            continue
+        nx, ny = c["normal"][0], c["normal"][1]
+        mass = masses(c)
+        va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
+        for j in range(c["count"]):
+            p = c["points"][j]
+            if p["approach_speed"] > -threshold or p["max_normal_impulse"] == 0.0:
+                continue
+            vn = normal_speed(va, vb, p, nx, ny)
+            old = p["normal_impulse"] + p["bounce_impulse"]
+            new = max(old - p["normal_mass"] * (vn + e * p["approach_speed"]), 0.0)  # -e vn0
+            p["bounce_impulse"] += new - old
+            ra, rb = arms(p)
+            va, vb = exchange(va, vb, mass, ra, rb, (new - old) * nx, (new - old) * ny)
+            c["rebound"] = max(c["rebound"], (1.0 + e) * -p["depth"])
+        set_velocity(bodies, c["a"], va)
+        set_velocity(bodies, c["b"], vb)
+
+
+@njit
+def count_points(contacts, k: int) -> int:
+    """How many contact points the first ``k`` contacts hold."""
+    points = 0
+    for i in range(k):
+        points += contacts[i]["count"]
+    return points

@@ -1,0 +1,289 @@
+"""One step of the world (slides, "State Update" and "Retroactive Collision Detection";
+box2d-lite's ``World::Step``, Box2D's ``b2SolverStep``).
+
+The stages, in order, each a function named after what it does:
+
+1. ``find_pairs``            broadphase: shapes whose boxes overlap (:mod:`sandbox.broadphase`)
+2. ``collide``               narrowphase: contact manifolds at the current poses
+                             (:mod:`sandbox.narrowphase`), as CONTACT records
+3. ``prepare_contacts``      effective masses, approach speeds (before gravity), and last step's
+                             impulses found again for warm starting (:mod:`sandbox.solvers.common`)
+4. ``integrate_velocities``  gravity and forces: v += a dt, the integrator's increment
+                             (:mod:`sandbox.integrators`)
+5. ``prepare_joints``        arms, effective masses, targets (:mod:`sandbox.joints.solve`)
+6. ``warm_start``            last step's impulses applied again
+7. ``solve``                 the solver's sweeps over contacts and joints (``settings.solver``)
+8. ``restitution``           bounces, from the approach speeds of stage 3
+9. ``integrate_positions``   p += dp + (v - v_free) dt; continuous collision may shorten it
+                             (:mod:`sandbox.toi`)
+10. ``fix_positions``        the penetration fix and the joints' position pass
+                             (:mod:`sandbox.penetration`)
+11. ``store_impulses``       this step's contacts become the next step's warm-start source; a
+                             body whose state stopped being finite is reported
+
+:func:`staged_step` calls the stages one by one from Python, whatever the settings, and can time
+each (``timer``). :func:`fast_step` is the same sequence in one compiled call, for the usual
+world (sweep and prune, the iterative solver, an Euler integrator, no state-dependent forces, no
+continuous collision); each compiled call from Python costs about a microsecond, as much as a
+small world's whole step. Both run the very same stage functions in the same order, so they
+give bit-identical results (``tests/test_step.py``).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from sandbox.broadphase.aabb import proxy_boxes, sort_pairs_into
+from sandbox.broadphase.sap import sweep
+from sandbox.integrators import integrate_velocities, move_bodies, plan_motion
+from sandbox.jit import njit
+from sandbox.joints.solve import prepare_joints, warm_start_joints
+from sandbox.narrowphase import collide_into
+from sandbox.penetration import fix_positions
+from sandbox.records import DYNAMIC
+from sandbox.solvers import SOLVERS, iterative
+from sandbox.solvers.common import (
+    count_points,
+    match_previous,
+    prepare_contacts,
+    restitution,
+    warm_start,
+)
+from sandbox.toi import limit_ccd_motion
+
+STAGES = (
+    "find_pairs",
+    "collide",
+    "prepare_contacts",
+    "integrate_velocities",
+    "prepare_joints",
+    "warm_start",
+    "solve",
+    "restitution",
+    "integrate_positions",
+    "fix_positions",
+    "store_impulses",
+)
+
+
+# --- the stages -------------------------------------------------------------------------------
+@njit
+def label_proxies(shapes, bodies, proxies) -> None:
+    """Each shape's body and whether that body can be pushed, for the broadphase's filter."""
+    for k in range(shapes.shape[0]):
+        b = shapes[k]["body"]
+        proxies[k]["body"] = b
+        proxies[k]["fixed"] = 1 if bodies[b]["kind"] != DYNAMIC else 0
+
+
+@njit
+def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
+    """Stage 1 by sweep and prune, keeping the sweep order from step to step: the sorted pair
+    list into ``pairs[1]``. Returns the number of pairs, or minus the rows needed when ``pairs``
+    is too small (nothing else changed)."""
+    ctx = context[0]
+    m = shapes.shape[0]
+    proxy_boxes(shapes, vertices, bodies, ctx["contact_margin"], proxies)
+    label_proxies(shapes, bodies, proxies)
+    axis, k, tests = sweep(proxies, ctx["sorted_axis"], pairs[0])
+    ctx["sorted_axis"] = axis
+    ctx["pair_tests"] = tests
+    if k > pairs.shape[1]:
+        return -k
+    sort_pairs_into(pairs[0], k, m, np.empty(m + 1, dtype=np.int64), pairs[1])
+    ctx["pairs"] = k
+    return k
+
+
+@njit
+def prepare(contacts, k: int, previous, bodies, context) -> None:
+    """Stage 3: :func:`sandbox.solvers.common.prepare_contacts`, then the warm-start impulses."""
+    ctx = context[0]
+    prepare_contacts(contacts, k, bodies, 0.0, context)
+    found = 0
+    if ctx["warm_start"]:
+        found = match_previous(contacts, k, previous, ctx["contact_count"][ctx["contact_set"]])
+    ctx["warm_started_points"] = found
+
+
+@njit
+def warm_start_all(contacts, k: int, joints, bodies, context) -> None:
+    """Stage 6: contacts (when warm starting) and joints."""
+    ctx = context[0]
+    if ctx["warm_start"]:
+        warm_start(contacts, k, bodies)
+    warm_start_joints(joints, bodies)
+
+
+@njit
+def store_impulses(k: int, bodies, context) -> int:
+    """Stage 11: the set just written holds the next step's warm-start source; report the
+    first body whose state is not finite (``ctx["diverged"]``, -1 when none). Returns 0, or 1
+    plus that body's index."""
+    ctx = context[0]
+    cur = 1 - ctx["contact_set"]
+    ctx["contact_set"] = cur
+    ctx["contact_count"][cur] = k
+    ctx["contacts"] = k
+    ctx["diverged"] = -1
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        s = b["com"][0] + b["com"][1] + b["vel"][0] + b["vel"][1] + b["omega"] + b["angle"]
+        if not np.isfinite(s):
+            ctx["diverged"] = i
+            return 1 + i
+    return 0
+
+
+# --- the step, in one compiled call ------------------------------------------------------------
+@njit
+def fast_step(
+    bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context
+) -> int:
+    """The stages of :func:`staged_step` in one compiled call (sweep and prune, the iterative
+    solver, an Euler integrator, no continuous collision). Returns 0, minus the pair rows
+    needed when ``pairs`` is too small (nothing changed: grow the buffers and call again), or 1
+    plus the index of a body whose state stopped being finite."""
+    ctx = context[0]
+    model = (bodies, shapes, vertices, joints, generators)
+    contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
+    k = 0
+    if shapes.shape[0] >= 2:
+        npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
+        if npairs < 0:
+            return npairs
+        k = collide_into(
+            pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
+        )
+        prepare(contacts, k, previous, bodies, context)
+    integrate_velocities(model, context)
+    prepare_joints(joints, bodies, context)
+    warm_start_all(contacts, k, joints, bodies, context)
+    iterative.solve(contacts, k, joints, bodies, context)
+    restitution(contacts, k, bodies, ctx["restitution_threshold"])
+    plan_motion(bodies, ctx["dt"])
+    move_bodies(bodies, rot, context)
+    fix_positions(contacts, k, joints, bodies, rot, context)
+    ctx["contact_points"] = count_points(contacts, k)
+    return store_impulses(k, bodies, context)
+
+
+@njit
+def free_step(bodies, rot, shapes, vertices, joints, generators, context) -> int:
+    """:func:`fast_step` for a world with fewer than two shapes and no joints (nothing can
+    touch anything): the velocities, then the positions. Fewer arrays to hand over: this is
+    the whole cost of stepping a single body."""
+    integrate_velocities((bodies, shapes, vertices, joints, generators), context)
+    plan_motion(bodies, context[0]["dt"])
+    move_bodies(bodies, rot, context)
+    context[0]["contact_points"] = 0
+    return store_impulses(0, bodies, context)
+
+
+# --- the step, stage by stage from Python ------------------------------------------------------
+class StageTimer:
+    """Wall time of every stage, added up over the steps taken with it (s)."""
+
+    def __init__(self) -> None:
+        self.seconds = dict.fromkeys(STAGES, 0.0)
+        self.steps = 0
+        self._last = 0.0
+
+    def start(self) -> None:
+        self._last = time.perf_counter()
+
+    def lap(self, stage: str) -> None:
+        now = time.perf_counter()
+        self.seconds[stage] += now - self._last
+        self._last = now
+
+
+class _NoTimer:
+    def start(self) -> None:
+        pass
+
+    def lap(self, stage: str) -> None:
+        pass
+
+
+def staged_pairs(world, a, ctx) -> int:
+    """Stage 1 with the world's broadphase (sweep and prune compiled with its kept order; the
+    other strategies through :func:`sandbox.broadphase.find_pairs`)."""
+    from sandbox.broadphase import find_pairs as find_pairs_by_name
+
+    if world.settings.broadphase == "sap":
+        return find_pairs(
+            a.shapes, a.vertices, a.bodies, a.buffers.proxies, a.buffers.pairs, a.context
+        )
+    proxies = a.buffers.proxies
+    proxy_boxes(a.shapes, a.vertices, a.bodies, ctx["contact_margin"], proxies)
+    label_proxies(a.shapes, a.bodies, proxies)
+    found, tests = find_pairs_by_name(
+        world.settings.broadphase,
+        np.ascontiguousarray(proxies["aabb"]),
+        proxies["fixed"].astype(bool),
+        np.ascontiguousarray(proxies["body"]),
+    )
+    ctx["pair_tests"] = tests
+    k = len(found)
+    if k > a.buffers.pairs.shape[1]:
+        return -k
+    a.buffers.pairs[1, :k] = found
+    ctx["pairs"] = k
+    return k
+
+
+def staged_step(world, timer: StageTimer | None = None) -> int:
+    """One step, stage by stage (any settings). Returns 0, minus the pair rows needed, or 1
+    plus the index of a body whose state stopped being finite."""
+    a = world.arrays()
+    ctx = a.context[0]
+    clock = timer if timer is not None else _NoTimer()
+    clock.start()
+    model = (a.bodies, a.shapes, a.vertices, a.joints, a.generators)
+    sets = a.buffers.sets
+    contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
+    k = 0
+    if a.shapes.shape[0] >= 2:
+        npairs = staged_pairs(world, a, ctx)
+        if npairs < 0:
+            return npairs
+        clock.lap("find_pairs")
+        k = collide_into(
+            a.buffers.pairs[1],
+            npairs,
+            a.shapes,
+            a.vertices,
+            a.bodies,
+            a.joints,
+            ctx["contact_margin"],
+            contacts,
+        )
+        clock.lap("collide")
+        prepare(contacts, k, previous, a.bodies, a.context)
+        clock.lap("prepare_contacts")
+    integrate_velocities(model, a.context)
+    clock.lap("integrate_velocities")
+    prepare_joints(a.joints, a.bodies, a.context)
+    clock.lap("prepare_joints")
+    warm_start_all(contacts, k, a.joints, a.bodies, a.context)
+    clock.lap("warm_start")
+    SOLVERS[world.settings.solver].solve(contacts, k, a.joints, a.bodies, a.context)
+    clock.lap("solve")
+    restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
+    clock.lap("restitution")
+    plan_motion(a.bodies, ctx["dt"])
+    if world.has_ccd:
+        limit_ccd_motion(a.bodies, a.shapes, a.vertices, a.context)
+    move_bodies(a.bodies, a.rot, a.context)
+    clock.lap("integrate_positions")
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
+    clock.lap("fix_positions")
+    ctx["contact_points"] = count_points(contacts, k)
+    status = store_impulses(k, a.bodies, a.context)
+    clock.lap("store_impulses")
+    if timer is not None:
+        timer.steps += 1
+    return status
