@@ -209,7 +209,7 @@ def run(args: argparse.Namespace) -> int:
         if frames:
             from sandbox.render import render_gif, render_png
 
-            recordings = {kind: _finish(frames[kind], args.steps) for kind in frames}
+            recordings = {kind: _finish(frames[kind], args.steps, kind == "png") for kind in frames}
             if args.gif:
                 rec = recordings["gif"]
                 label = f"{args.engine}: {spec['name']}"
@@ -240,11 +240,12 @@ def _frames(world, scene, every: int, keep_last: bool, layers, energy: bool):
     return replay.RowSampler(world, every, keep_last=keep_last, draw=layers, energy=energy)
 
 
-def _finish(frames, steps: int):
-    """The recording; a picture of the end gets the final step even off the stride."""
+def _finish(frames, steps: int, keep_last: bool):
+    """The recording; a picture of the end (``keep_last``) gets the final step even off the
+    stride."""
     if isinstance(frames, replay.RowSampler):
         return frames.finish()
-    if steps % frames.every:
+    if keep_last and steps % frames.every:
         frames.capture()
     return frames.recording
 
