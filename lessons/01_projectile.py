@@ -33,6 +33,7 @@ import math
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pymunk
 
 from sandbox import integrators, projectile
 from sandbox.body import Body
@@ -331,7 +332,7 @@ print_table(
 )  # fmt: skip
 
 # %%
-fig, axes = plt.subplots(1, 4, figsize=(16, 4))
+fig, axes = plt.subplots(1, 4, figsize=(16, 5))
 floor = 1e-16  # where "exact" results are drawn on the log axis
 for ax, prob in zip(axes[:3], problems, strict=True):
     for m in METHODS:
@@ -345,7 +346,7 @@ for ax, prob in zip(axes[:3], problems, strict=True):
         )  # fmt: skip
     ax.set(xlabel=r"$\Delta t$ (s)", ylabel="error at T (m)", title=prob)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7, loc="center right" if prob == "gravity only" else "lower right")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
 axes[0].set_ylim(1e-17, 10)
 ax = axes[3]  # the drag paths at the coarsest step, against the reference
 dt_show = DTS[0]
@@ -364,7 +365,7 @@ for m in METHODS:
     path = np.array(path)
     ax.plot(path[:, 0], path[:, 1], ".-", color=COLOR[m], ms=4, lw=1, label=LABEL[m])
 ax.set(xlabel="x (m)", ylabel="y (m)", title=f"quadratic drag, c = {DRAG}, dt = {dt_show} s")
-ax.legend(fontsize=7)
+ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
 ax.grid(alpha=0.3)
 fig.tight_layout()
 save_figure(fig, OUT / "error_vs_dt.png", dpi=100)
@@ -385,18 +386,120 @@ for prob in ("quadratic drag", "spring"):
 #   rounding. A constant acceleration is the one case the simple second-order update gets right.
 # - **quadratic drag** and **spring**: the acceleration changes within a step, and the fitted
 #   slopes come out at the textbook orders 1, 1, 2, 4. Halving $\Delta t$ halves the Euler error
-#   but divides RK4's by 16 (the ratios are printed below), for four acceleration evaluations
+#   but divides RK4's by 16 (the ratios are printed above), for four acceleration evaluations
 #   per step instead of one.
 # - semi-implicit Euler is not more *accurate* than explicit Euler (on the drag problem it is
-#   worse); its strength is stability (it keeps an oscillator's energy bounded, where explicit
-#   Euler's grows), which is why pymunk and Box2D use it.
+#   worse); its strength is stability: it keeps an oscillator's energy bounded where explicit
+#   Euler's grows (next section), which is why Box2D uses it.
 #
+# ## A spring's energy under three integrators
+#
+# The spring $x'' = -\omega^2 x$ has the energy (per kg) $E = \frac{1}{2}v^2 +
+# \frac{1}{2}\omega^2x^2$, constant in the exact motion. What one step does to it, with
+# $h = \Delta t$:
+#
+# - **explicit Euler**, $x' = x + vh$, $v' = v - \omega^2 x h$: expanding,
+#   $v'^2 + \omega^2x'^2 = (v^2 + \omega^2x^2)(1 + \omega^2h^2)$. Every step *multiplies* the
+#   energy by $1 + (\omega h)^2$: it grows exponentially, whatever $h$.
+# - **semi-implicit Euler**, $v' = v - \omega^2xh$ first, then $x' = x + v'h$: it keeps the
+#   "shadow energy" $\tilde E = \frac{1}{2}v^2 + \frac{1}{2}\omega^2x^2 - \frac{1}{2}\omega^2h\,xv$
+#   exactly, so $E$ only wobbles around it, by at most a fraction $\omega h / 2$: bounded for ever.
+# - **RK4**: one step multiplies $(x, v/\omega)$ by $R(i\omega h)$, the Taylor polynomial of
+#   $e^{i\omega h}$ to 4th order, so the energy is multiplied by $|R|^2 = 1 - (\omega h)^6/72 +
+#   (\omega h)^8/576$: a loss so small that it takes thousands of periods to see.
+#
+# **pymunk** (Chipmunk) orders its step differently from both Eulers above: it first moves every
+# body with its *old* velocity, $x' = x + vh$, then finds contacts and updates the velocities with
+# the forces, $v' = v + a h$. Under a constant acceleration (gravity) that is exactly the slides'
+# explicit Euler (lesson 14 shows pymunk's ball on the explicit Euler parabola). For a spring it
+# depends on *where* the force is evaluated: Chipmunk's `DampedSpring` computes its force during
+# the step, after the move, at the new position, $v' = v - \omega^2x'h$, which is the mirror image of
+# semi-implicit Euler (it keeps $\frac{1}{2}v^2 + \frac{1}{2}\omega^2x^2 + \frac{1}{2}\omega^2h\,xv$)
+# and bounded; a force a user computes *before* `space.step()` is the old position's, and that is
+# explicit Euler again. Below, a pymunk body on a `DampedSpring` runs beside the three.
+
+# %%
+ENERGY_DT, ENERGY_T = 0.05, 20.0  # s: omega dt = 0.1, about 6 periods
+n_energy = int(round(ENERGY_T / ENERGY_DT))
+t_energy = ENERGY_DT * np.arange(n_energy + 1)
+
+
+def spring_energy(p: np.ndarray, v: np.ndarray) -> float:
+    """E = v^2 / 2 + omega^2 x^2 / 2 (J per kg)."""
+    return 0.5 * float(v @ v) + 0.5 * SPRING**2 * float(p @ p)
+
+
+energy_runs = {}
+for m in ("explicit_euler", "semi_implicit_euler", "rk4"):
+    p_m, v_m, e_m = np.array([1.0, 0.0]), np.array([0.0, 0.0]), []
+    for _ in range(n_energy + 1):
+        e_m.append(spring_energy(p_m, v_m))
+        p_m, v_m, _, _ = integrators.integrate(m, p_m, v_m, 0.0, 0.0, spring_accel, ENERGY_DT)
+    energy_runs[LABEL[m]] = np.array(e_m)
+
+space = pymunk.Space()  # a 1 kg body on a spring to (-2, 0) of rest length 2: force -k x
+anchor = pymunk.Body(body_type=pymunk.Body.STATIC)
+anchor.position = (-2.0, 0.0)
+bob = pymunk.Body(1.0, float("inf"))
+bob.position = (1.0, 0.0)
+space.add(bob, pymunk.DampedSpring(anchor, bob, (0, 0), (0, 0), 2.0, SPRING**2, 0.0))
+e_pm = []
+for _ in range(n_energy + 1):
+    e_pm.append(spring_energy(np.array(bob.position), np.array(bob.velocity)))
+    space.step(ENERGY_DT)
+energy_runs["pymunk DampedSpring"] = np.array(e_pm)
+
+wh = SPRING * ENERGY_DT
+bounded = f"in [{1 / (1 + wh / 2):.4f}, {1 / (1 - wh / 2):.4f}]"  # E / shadow E, |xv| <= E / w
+closed_energy = {
+    "explicit Euler": (1 + wh**2) ** n_energy,
+    "RK4": (1 - wh**6 / 72 + wh**8 / 576) ** n_energy,
+}
+print(
+    f"omega dt = {wh:g}, {n_energy} steps ({ENERGY_T:g} s, {ENERGY_T * SPRING / (2 * math.pi):.1f} periods)"
+)
+print_table(
+    ["integrator", "E(T) / E(0)", "max |E / E(0) - 1|", "closed form E(T) / E(0)"],
+    [
+        (name, f"{e[-1] / e[0]:.10f}", f"{np.max(np.abs(e / e[0] - 1)):.2e}",
+         f"{closed_energy[name]:.10f}" if name in closed_energy else bounded)
+        for name, e in energy_runs.items()
+    ],
+)  # fmt: skip
+
+# %%
+fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4))
+styles = {
+    "explicit Euler": (COLOR["explicit_euler"], "-"),
+    "semi-implicit Euler": (COLOR["semi_implicit_euler"], "-"),
+    "RK4": (COLOR["rk4"], "-"),
+    "pymunk DampedSpring": ("C4", "--"),
+}
+for name, e in energy_runs.items():
+    color, ls = styles[name]
+    ax.plot(t_energy, e / e[0], color=color, ls=ls, label=name)
+    bx.semilogy(t_energy[1:], np.abs(e[1:] / e[0] - 1), color=color, ls=ls, label=name)
+ax.plot(t_energy, (1 + wh**2) ** np.arange(n_energy + 1), "k:", lw=1,
+        label=r"$(1 + \omega^2\Delta t^2)^n$")  # fmt: skip
+ax.set(xlabel="t (s)", ylabel="E / E(0) (1)", ylim=(0.0, 2.5),
+       title=f"spring energy, $\\omega\\Delta t$ = {wh:g}")  # fmt: skip
+bx.set(xlabel="t (s)", ylabel="|E / E(0) - 1| (1)", title="the same, relative error (log)")
+for a in (ax, bx):
+    a.grid(alpha=0.3)
+    a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+fig.tight_layout()
+save_figure(fig, OUT / "spring_energy.png", dpi=100)
+
+# %% [markdown]
 # ## Animation
 #
 # Three balls launched together: the analytic ball (drawn at any time: it is a function of $t$),
 # the slides' explicit Euler ball with $\Delta t = 1$ s (it only moves when a step happens, so it
-# jumps once per second), and explicit Euler with $\Delta t$ = `ANIM_DT`. Each stops where it first
-# comes back to $y = 0$: $x = 24$, $x = 27$ and $x = 24 + u_x\,\Delta t = 24.3$.
+# jumps once per second), and explicit Euler with $\Delta t$ = `ANIM_DT`. Each frame at time
+# $t_k$ shows every ball at its latest state *no later than* $t_k$: a run is never drawn ahead of
+# the frame's time, so the $\Delta t = 1$ s ball sits at its start until $t = 1$ s, and comes back
+# to $y = 0$ at $t = 9$ s, one second after the exact ball. Each stops where it first comes back
+# to $y = 0$: $x = 24$, $x = 27$ and $x = 24 + u_x\,\Delta t = 24.3$.
 
 # %%
 frame_times = np.arange(0.0, 9.0 + 0.5 * ANIM_DT, ANIM_DT)
@@ -413,17 +516,26 @@ for integrator, dt, label in (
         types=["static", "dynamic"],
         outlines=[[ground], [CircleOutline(np.zeros(2), RADIUS)]],
     )
-    landed = None
+    landed, shown = None, []
     for tk in frame_times:
-        while world.time < tk - 1e-9 and landed is None:
+        # sample at the frame time, never ahead of it: step only while the next state is due
+        while world.time + dt <= tk + 1e-9 and landed is None:
             world.step()
             if ball.position[1] <= 1e-9:  # back at launch height: stop here
-                landed = (*ball.position, ball.angle)
-        x, y, ang = landed or (*ball.position, ball.angle)
+                landed = (*ball.position, ball.angle, world.time)
+        x, y, ang, t_state = landed or (*ball.position, ball.angle, world.time)
+        shown.append((tk, t_state, y))
         rec.add_frame([[0.0, 0.0, 0.0], [x, y, ang]], tk, **{"y (m)": y})
     runs.append(rec)
     labels.append(label)
-    print(f"{label}: lands at x = {runs[-1].frames[-1][1, 0]:.4f} m")
+    shown = np.array(shown)
+    first = int(np.argmax(shown[:, 1] == shown[-1, 1]))  # first frame showing the last state
+    ahead = float(np.max(shown[:, 1] - shown[:, 0]))
+    print(
+        f"{label}: frame t = 0.1 s shows its t = {shown[1, 1]:.1f} s state; back at y = 0 at "
+        f"t = {shown[-1, 1]:.1f} s (from frame t = {shown[first, 0]:.1f} s), "
+        f"x = {runs[-1].frames[-1][1, 0]:.4f} m; latest state time - frame time = {ahead:+.1f} s"
+    )
 
 gif = render_gif(
     runs,
@@ -436,3 +548,80 @@ gif = render_gif(
     trail=True,
 )
 print(f"wrote {len(frame_times)} frames to {gif.name}")
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** Halve the slides' step to $\Delta t = 0.5$ s (explicit Euler). When and where does the
+# ball come back to $y = 0$, and how high is the highest point of its table?
+
+
+# %%
+def land(integrator: str, dt: float) -> tuple[float, float, float]:
+    """Step a ball until it is back at y <= 0: (time, x, highest y of its steps)."""
+    world, ball = ball_world(integrator, dt)
+    top = 0.0
+    while True:
+        world.step()
+        top = max(top, ball.position[1])
+        if ball.position[1] <= 1e-9:
+            return world.time, ball.position[0], top
+
+
+t1, x1, top1 = land("explicit_euler", 0.5)
+print(f"explicit Euler, dt = 0.5 s: back at y = 0 at t = {t1:g} s, x = {x1:g} m, top {top1:g} m")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The Euler points lie on the parabola thrown at $\mathbf{u} - \frac{1}{2}\mathbf{a}\Delta t =
+# [3\ 4.25]$: it stays up $2 \times 4.25 / 1 = 8.5$ s $= T + \Delta t$, so the ball lands at
+# $x = 3 \times 8.5 = 25.5$ m, half as far past 24 m as with $\Delta t = 1$ s (first order).
+# That parabola peaks at $4.25^2 / 2 = 9.03$ m at $t = 4.25$ s, between two steps; the steps at
+# $t = 4$ and $4.5$ s both sit at $4.25 t - t^2/2 = 9.0$ m. The run prints exactly these.
+#
+# </details>
+#
+# **2.** Switch the slides' example ($\Delta t = 1$ s) to semi-implicit Euler. Where does it land
+# now, and what is the top of its table?
+
+# %%
+t2, x2, top2 = land("semi_implicit_euler", 1.0)
+print(f"semi-implicit Euler, dt = 1 s: back at y = 0 at t = {t2:g} s, x = {x2:g} m, top {top2:g} m")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The mirror image: $\mathbf{p}_n = \mathbf{s} + \mathbf{u}\,n\Delta t + \mathbf{a}\,\Delta t^2
+# n(n+1)/2$, the parabola thrown at $\mathbf{u} + \frac{1}{2}\mathbf{a}\Delta t = [3\ 3.5]$. It is
+# up for $2 \times 3.5 = 7$ s $= T - \Delta t$: $x = 21$ m, one step *early*. Its apex,
+# $3.5^2/2 = 6.125$ m at $t = 3.5$ s, falls between steps 3 and 4, both at $6$ m.
+#
+# </details>
+#
+# **3.** The spring again, with explicit Euler at twice the step ($\Delta t = 0.1$ s,
+# $\omega\Delta t = 0.2$). By what factor has its energy grown after 20 s? And semi-implicit
+# Euler's?
+
+# %%
+for m in ("explicit_euler", "semi_implicit_euler"):
+    p3, v3 = np.array([1.0, 0.0]), np.array([0.0, 0.0])
+    e3 = [spring_energy(p3, v3)]
+    for _ in range(200):
+        p3, v3, _, _ = integrators.integrate(m, p3, v3, 0.0, 0.0, spring_accel, 0.1)
+        e3.append(spring_energy(p3, v3))
+    e3 = np.array(e3) / e3[0]
+    print(f"{LABEL[m]}: E(20 s) / E(0) = {e3[-1]:.1f}, range {e3.min():.3f} .. {e3.max():.3f}")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Each explicit step multiplies the energy by $1 + (\omega\Delta t)^2 = 1.04$; 200 steps give
+# $1.04^{200} = 2550.7$: doubling the step did not double the growth, it raised it from 53 to
+# 2551 (the exponent doubled). Semi-implicit Euler keeps its shadow energy, so its energy stays
+# within $[1/(1 + \omega\Delta t/2), 1/(1 - \omega\Delta t/2)] = [0.909, 1.111]$; the run
+# reaches $0.909$ and $1.111$.
+#
+# </details>

@@ -297,58 +297,106 @@ print(
 
 # %%
 t_samples = (samples + 1) * DT
-FLOOR = 1e-17  # an exact 0 is drawn here on the log axis
-fig, axes = plt.subplots(1, 3, figsize=(16, 4.4))
+fig, axes = plt.subplots(1, 3, figsize=(16, 7.0))
+
+
+def positive(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The samples a log axis can show: an exact 0 (or an overflow) is left out, not faked."""
+    ok = np.isfinite(y) & (y > 0) & (y < 1e6)
+    return t[ok], y[ok]
+
+
 ax = axes[0]
 for name in ("matrix", "complex"):
     for renormalise, style in ((False, "-"), (True, ".")):
         d = runs[name, "float64", renormalise]["drift"]
-        tag = "renormalised (0 drawn at 1e-17)" if renormalise else "raw"
-        ax.semilogy(
-            t_samples, np.maximum(d, FLOOR), style, color=COLOR[name], ms=3, label=f"{name}, {tag}"
-        )
-ax.axhline(FLOOR, color=COLOR["angle"], lw=2, alpha=0.5, label="angle: always 0")
-ax.set(xlabel="t (s)", ylabel="drift", title=f"double precision, {STEPS:,} steps")
-ax.set_ylim(FLOOR / 3, 1e-8)
-ax.legend(fontsize=8, loc="upper right")
+        zeros = int(np.sum(d == 0))
+        tag = f"renormalised ({zeros} of {len(d)} samples exactly 0)" if renormalise else "raw"
+        ax.semilogy(*positive(t_samples, d), style, color=COLOR[name], ms=3,
+                    label=f"{name}, {tag}")  # fmt: skip
+ax.plot([], [], color=COLOR["angle"], label="angle: drift always exactly 0 (no log point)")
+ax.set(xlabel="t (s)", ylabel="drift (1)", title=f"double precision, {STEPS:,} steps")
+ax.set_ylim(1e-18, 1e-8)
 ax = axes[1]
 for (name, precision, renormalise), r in runs.items():
     if precision == "float64" or name == "angle":
         continue
     color = COLOR[name] if precision == "float32" else "C4"
     tag = f"{name} {precision}, {'renormalised' if renormalise else 'raw'}"
-    ok = np.isfinite(r["drift"]) & (r["drift"] < 1e6)  # the overflowing run leaves the axes
-    ax.semilogy(
-        t_samples[ok], np.maximum(r["drift"][ok], FLOOR), ":" if renormalise else "-",
-        color=color, label=tag,
-    )  # fmt: skip
-ax.set(xlabel="t (s)", ylabel="drift", title="single precision, and the 1 + i w dt shortcut")
-ax.set_ylim(FLOOR / 3, 1e4)
+    if precision == "1 + i w dt" and renormalise:
+        tag += f" ({int(np.sum(r['drift'] == 0))} samples exactly 0)"
+    ax.semilogy(*positive(t_samples, r["drift"]), ":" if renormalise else "-", color=color,
+                label=tag)  # fmt: skip
+ax.set(xlabel="t (s)", ylabel="drift (1)", title="single precision, and the 1 + i w dt shortcut")
+ax.set_ylim(1e-17, 1e4)
 ax.annotate(
     f"1 + i w dt, raw: |z| grows every step,\npasses 1e300 at t = {(k_over + 1) * DT:.0f} s",
     (t_samples[np.argmax(runs["complex", "1 + i w dt", False]["drift"] > 1e3)], 1e3),
     xytext=(0.25, 0.93), textcoords="axes fraction", fontsize=7, va="top", color="C4",
     arrowprops={"arrowstyle": "->", "color": "C4"},
 )  # fmt: skip
-ax.legend(fontsize=7, loc="center right", bbox_to_anchor=(1.0, 0.3))
 ax = axes[2]
 for (name, precision, renormalise), r in runs.items():
     if not renormalise and name != "angle":
         continue  # angle error of the renormalised runs (raw ones look the same, see the table)
     color = COLOR[name] if precision != "1 + i w dt" else "C4"
     ls = {"float64": "-", "float32": "--", "1 + i w dt": "-."}[precision]
-    ok = np.isfinite(r["error"])
-    ax.semilogy(
-        t_samples[ok], np.maximum(r["error"][ok], FLOOR), ls, color=color,
-        label=f"{name} {precision}",
-    )  # fmt: skip
+    wide = name == "matrix"  # the matrix drawn wide and pale under the complex: they coincide
+    ax.semilogy(*positive(t_samples, r["error"]), ls, color=color, lw=3.5 if wide else 1.2,
+                alpha=0.45 if wide else 1.0, label=f"{name} {precision}")  # fmt: skip
 ax.set(xlabel="t (s)", ylabel="|angle - exact| (rad)", title="angle error (renormalised runs)")
-ax.legend(fontsize=7, loc="center right", bbox_to_anchor=(1.0, 0.42))
 for ax in axes:
     ax.axvline(SWITCH * DT, color="0.6", lw=0.8)
     ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12))
 fig.tight_layout()
 save_figure(fig, OUT / "drift.png", dpi=100)
+
+# %% [markdown]
+# ### The other side of $1 + i\omega\Delta t$
+#
+# The shortcut looks hopeless above because this run spins fast: by the end
+# $\omega\Delta t = 0.29$ rad per step. Yet Box2D v3 turns every body exactly this way
+# (`b2IntegrateRotation`: $z \leftarrow (z + i\,\omega\Delta t\,z) / |z + i\,\omega\Delta t\,z|$,
+# no cosine, no sine), and it is a sound choice there. Once renormalised, a step turns by
+# $\arctan\omega\Delta t$ instead of $\omega\Delta t$, short by
+# $\omega\Delta t - \arctan\omega\Delta t = (\omega\Delta t)^3/3 - (\omega\Delta t)^5/5 + \dots$:
+# the spin comes out slow by a *fraction* $(\omega\Delta t)^2/3$. Box2D takes small steps (4
+# substeps per 60 Hz frame, $\Delta t = 1/240$ s) and caps a substep's turn at $\pi/4$ rad, so
+# for everyday spins the error is far below what anyone sees; a fast wheel is where it shows.
+
+# %%
+CASES_1IW = [  # (what, omega rad/s, dt s)
+    ("this lesson at the start", OMEGA0, DT),
+    ("this lesson at the end", omegas[-1], DT),
+    ("a box tumbling, 60 Hz", 10.0, 1 / 60),
+    ("a box tumbling, Box2D substep", 10.0, 1 / 240),
+    ("a wheel at 10 turns/s, Box2D substep", 20 * math.pi, 1 / 240),
+]
+rows = []
+for what, w_case, dt_case in CASES_1IW:
+    x_step = w_case * dt_case
+    lag = x_step - math.atan(x_step)  # rad lost per step, exactly
+    seconds_to_degree = math.radians(1.0) / (lag / dt_case)
+    rows.append((what, f"{x_step:.4f}", f"{lag:.2e}", f"{x_step**3 / 3:.2e}",
+                 f"{lag / x_step:.2e}", f"{seconds_to_degree:.3g}"))  # fmt: skip
+print_table(["case", "omega dt (rad)", "lag per step (rad)", "(omega dt)^3 / 3",
+             "spin rate error (1)", "s to lag 1 degree"], rows)  # fmt: skip
+
+fig, ax = plt.subplots(figsize=(8, 4.2))
+xs = np.geomspace(1e-3, 1.0, 200)
+ax.loglog(xs, xs - np.arctan(xs), color="0.5", lw=3, alpha=0.6,
+          label=r"lag per step, $\omega\Delta t - \arctan\omega\Delta t$")  # fmt: skip
+ax.loglog(xs, xs**3 / 3, "k:", label=r"$(\omega\Delta t)^3 / 3$")
+for k, (what, w_case, dt_case) in enumerate(CASES_1IW):
+    x_step = w_case * dt_case
+    ax.loglog([x_step], [x_step - math.atan(x_step)], "o", color=f"C{k}", label=what)
+ax.set(xlabel=r"$\omega\Delta t$ per step (rad)", ylabel="angle lost per step (rad)",
+       title="renormalised 1 + i w dt: the turn it misses each step")  # fmt: skip
+ax.grid(alpha=0.3, which="both")
+ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+fig.tight_layout()
+save_figure(fig, OUT / "small_angle_update.png", dpi=100)
 
 # %% [markdown]
 # ## Do the three agree?
@@ -497,7 +545,7 @@ print_table(
 )  # fmt: skip
 
 # %%
-fig, axes = plt.subplots(1, 2, figsize=(12, 4))
+fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
 bar_w = 0.25
 for ax, data, unit, keys in (
     (axes[0], py, "us per call (plain-Python classes)",
@@ -513,7 +561,7 @@ for ax, data, unit, keys in (
     ax.set_xticks(xs, ["integrate" if k is False else k for k in keys])
     ax.set(ylabel=unit, yscale="log")
     ax.grid(alpha=0.3, axis="y")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3)
 axes[0].set_title("Python: interpreter and numpy overhead dominate")
 axes[1].set_title("compiled: the arithmetic (cos + sin dominate)")
 fig.tight_layout()
@@ -603,7 +651,7 @@ print_table(["", "slide's claim", "measured", "verdict"], claims)
 #   the cosine and sine both need: the compiled kernels cost about the same. Renormalisation
 #   likewise: a 2D rotation matrix is fixed by its first column, so Gram-Schmidt is one
 #   2-vector normalisation plus two copies, the same work as $z / |z|$. The matrix's "costly"
-#   labels hold in plain Python, where every $2	imes2$ product builds numpy arrays.
+#   labels hold in plain Python, where every $2\times2$ product builds numpy arrays.
 # - **Storage**: 1, 4 and 2 floats, as the slide says. The world keeps one `(n, 4)` array
 #   whatever the representation, so that it can switch between them; the saving would only be
 #   real with a layout per representation.
@@ -617,37 +665,58 @@ print_table(["", "slide's claim", "measured", "verdict"], claims)
 #   complex numbers (or matrices) keeps its relative precision. In `float32` that is the
 #   difference between $10^{-4}$ and $10^{-5}$ rad after 100,000 steps.
 # - An update that is not a rotation (the $1 + i\omega\Delta t$ shortcut) is a different matter:
-#   renormalisation hides the growth of $|z|$ but cannot repair the angle.
+#   renormalisation hides the growth of $|z|$ but cannot repair the angle. How much that costs
+#   depends on $\omega\Delta t$ (the section on Box2D's use of it above): hopeless at 0.29 rad per
+#   step, invisible at a few hundredths.
 
 # %% [markdown]
 # ## Animation: the three side by side
 #
 # Three boxes in three worlds, one per representation, spun by the same schedule (faster here so
 # that the animation shows a few turns: $\omega_0 = 2$ rad/s, then $\alpha = 3$ rad/s$^2$). The
-# panel shows each world's angle: a scalar angle jumps from $\pi$ to $-\pi$ (the discontinuity);
-# matrix and complex read the same angle back with `atan2`, so the three curves lie on top of
-# each other.
+# boxes turn identically (the angles agree to $10^{-9}$ rad, above), so the panels show what
+# *differs*, the numbers each world stores:
+#
+# - top: the scalar angle's stored $\varphi$, reduced to $[-\pi, \pi]$: it jumps by $2\pi$ at
+#   every half turn (the discontinuity the slide warns about). Matrix and complex store no angle
+#   (no curve).
+# - bottom: the drift of the stored orientation with renormalisation switched off
+#   (`renormalise=False`), in units of $10^{-15}$: $\big||z| - 1\big|$ for the complex number,
+#   $\|\Phi^T\Phi - I\|_F$ for the matrix (about $2\sqrt{2}$ times larger, as found above) and
+#   exactly 0 for the angle.
 
 # %%
 ANIM_STEPS, ANIM_EVERY, ANIM_SWITCH, ANIM_ALPHA = 180, 2, 90, 3.0
+STORED, DRIFT = "stored angle (rad)", "drift (1e-15)"
+
+
+def stored_angle(w: World) -> float:
+    """The number a scalar-angle world stores (NaN for the others: they store no angle)."""
+    return float(w.rot[0, 0]) if w.settings.orientation == "angle" else math.nan
+
+
 recs = []
 for j, kind in enumerate(NAMES):
     world, box = spinning_box(kind, x=2.2 * (j - 1), omega=2.0)
+    world.settings.renormalise = False
 
     def controller(body, w, anim_alpha=ANIM_ALPHA):
         if w.steps == ANIM_SWITCH:
             body.constant_torque = body.moment * anim_alpha  # tau = I alpha
 
     box.controller = controller
-    recs.append(
-        record(
-            world, ANIM_STEPS, every=ANIM_EVERY, series={"angle (rad)": lambda w: w.bodies[0].angle}
-        )
-    )
+    series = {STORED: stored_angle, DRIFT: lambda w: 1e15 * float(w.orientation_drift()[0])}
+    recs.append(record(world, ANIM_STEPS, every=ANIM_EVERY, series=series))
 end_angles = [r.frames[-1][0, 2] for r in recs]
 print(
     "final angles in the animation:",
     ", ".join(f"{k} {v:.12f}" for k, v in zip(NAMES, end_angles, strict=True)),
+)
+wraps_anim = int(np.sum(np.abs(np.diff(recs[0].series[STORED])) > math.pi))
+print(f"stored angle jumps by 2 pi {wraps_anim} times in {ANIM_STEPS} steps")
+print_table(
+    ["world", "drift after 180 steps, no renormalisation"],
+    [(k, f"{r.series[DRIFT][-1] * 1e-15:.2e}") for k, r in zip(NAMES, recs, strict=True)],
 )
 gif = render_gif(
     recs,
@@ -656,6 +725,85 @@ gif = render_gif(
     size_px=360,
     labels=list(NAMES),
     colors=[COLOR[n] for n in NAMES],
-    panel="angle (rad)",
+    panel=[STORED, DRIFT],
 )
 print(f"wrote {len(recs[0])} frames to {gif.name}")
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** A box spins at a steady $\omega = 2$ rad/s for one minute at $\Delta t = 1/60$ s, its
+# orientation stored as a scalar angle (starting at `PHI0` = 0.2 rad). How many times does the
+# stored angle jump by $2\pi$?
+
+# %%
+world, box = spinning_box("angle", omega=2.0)
+stored = []
+for _ in range(3600):
+    world.step()
+    stored.append(float(world.rot[0, 0]))
+print(f"turned {2.0 * world.time:.4f} rad; stored angle jumped "
+      f"{int(np.sum(np.abs(np.diff(stored)) > math.pi))} times")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The box turns $2 \times 60 = 120$ rad, from 0.2 to 120.2 rad. The stored angle jumps from $\pi$
+# to $-\pi$ each time the true angle passes $\pi + 2\pi k$: $\pi, 3\pi, \dots, 37\pi = 116.2$ rad,
+# 19 values ($39\pi = 122.5$ is past the end). The run counts 19. Matrix and complex would store
+# no jump at all: reading the angle back with `atan2` is where the wrap happens for them.
+#
+# </details>
+#
+# **2.** Box2D's update, $z \leftarrow (z + i\,\omega\Delta t\,z)/|\cdot|$, for a box spinning
+# at 5 rad/s: after how many seconds has it fallen 1 degree behind the true angle at 60 Hz? And
+# with Box2D's 4 substeps per frame ($\Delta t = 1/240$ s)?
+
+
+# %%
+def seconds_to_lag(omega: float, dt: float, degrees: float = 1.0) -> float:
+    """Step z <- (z + i omega dt z) / |.| until it is ``degrees`` behind omega t."""
+    z, t, turned = complex(1.0, 0.0), 0.0, 0.0
+    while omega * t - turned < math.radians(degrees):
+        z_new = z * complex(1.0, omega * dt)  # z + i omega dt z
+        z_new /= abs(z_new)
+        turned += math.atan2((z_new / z).imag, (z_new / z).real)  # this step's turn
+        z, t = z_new, t + dt
+    return t
+
+
+for dt_e in (1 / 60, 1 / 240):
+    print(f"dt = 1/{round(1 / dt_e)} s: 1 degree behind after {seconds_to_lag(5.0, dt_e):.2f} s")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Each step loses $(\omega\Delta t)^3/3$ rad, so per second $(\omega\Delta t)^3/(3\Delta t) =
+# \omega^3\Delta t^2/3$. At 60 Hz: $125 / (3 \times 3600) = 0.0116$ rad/s, and 1 degree
+# (0.01745 rad) takes $1.51$ s. Four times smaller steps lose 16 times less per second:
+# $7.2 \times 10^{-4}$ rad/s, 1 degree after $24.1$ s. The run prints 1.52 s and 24.14 s
+# (the first step past 1 degree). Put differently, the spin rate comes out
+# $(\omega\Delta t)^2/3 = 0.23\%$ low at 60 Hz and $0.014\%$ low with the substeps.
+#
+# </details>
+#
+# **3.** Without renormalisation, in double precision, the complex number drifted by about
+# $n\varepsilon$ after $n$ steps at constant $\omega$ (printed near the top). Predict the matrix's
+# drift after the same 2,999 steps from the complex number's, then check it in `runs`.
+
+# %%
+print(f"complex {runs['complex', 'float64', False]['drift'][k_sw]:.3e}, matrix "
+      f"{runs['matrix', 'float64', False]['drift'][k_sw]:.3e}, ratio "
+      f"{runs['matrix', 'float64', False]['drift'][k_sw] / runs['complex', 'float64', False]['drift'][k_sw]:.3f}")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# A matrix scaled by $1 + n\varepsilon$ has $\Phi^T\Phi - I = ((1 + n\varepsilon)^2 - 1)I
+# \approx 2n\varepsilon I$, whose Frobenius norm is $2\sqrt{2}\,n\varepsilon$: $2.83$ times the
+# complex number's $n\varepsilon$. The run gives 2.77, within 2% of $2\sqrt{2}$ (the matrix
+# products round as well).
+#
+# </details>

@@ -104,7 +104,7 @@ print(
 )
 
 # %%
-fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 3.8))
+fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4.4))
 ax.plot(POSITIONS, [0, 0], color="0.5", lw=2, zorder=1)
 for m, x, name in zip(MASSES, POSITIONS, ("m1 = 1 kg", "m2 = 2 kg"), strict=True):
     ax.scatter([x], [0], s=400 * m, color="tab:blue", zorder=3)
@@ -117,10 +117,11 @@ for a in (0.2, 0.6):
 ax.plot([], [], color="tab:red", ls="--", label="axes at 0.2, 0.6 m: I = 0.36 kg m$^2$")
 ax.set(xlim=(-0.2, 0.8), ylim=(-0.6, 0.6), xlabel="x (m)", yticks=[])
 ax.set_title("slides' example: which axis?")
-ax.legend(loc="lower left", fontsize=8)
+ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, ncol=2)
 
 a_grid = np.linspace(-0.1, 0.9, 201)
-bx.plot(a_grid, [moment_of_inertia(MASSES, POSITIONS, axis=a) for a in a_grid], color="k")
+bx.plot(a_grid, [moment_of_inertia(MASSES, POSITIONS, axis=a) for a in a_grid], color="k",
+        label="I(a) about an axis at a")  # fmt: skip
 bx.scatter([c], [i_cm], color="tab:green", zorder=3, label="about c: 0.24 (correct)")
 bx.scatter([0.2, 0.6], [0.36, 0.36], color="tab:red", zorder=3, label="0.36 (the slide's figure)")
 bx.axhline(0.36, color="tab:red", ls=":", lw=1)
@@ -207,7 +208,7 @@ x = np.arange(len(names))
 bx.bar(x - 0.2, computed, 0.4, label="computed (sandbox.mass)")
 bx.bar(x + 0.2, formula, 0.4, label="closed form / two boxes", hatch="//", alpha=0.6)
 bx.set_xticks(x, names, rotation=35, ha="right", fontsize=8)
-bx.set(ylabel="I about the centroid (kg m$^2$), m = 1 kg", title="same mass, different spread")
+bx.set(ylabel="I about the centroid, m = 1 kg (kg m$^2$)", title="same mass, different spread")
 bx.legend(fontsize=8)
 fig.tight_layout()
 save_figure(fig, OUT / "shape_moments.png", dpi=100)
@@ -234,6 +235,10 @@ save_figure(fig, OUT / "shape_moments.png", dpi=100)
 #
 # In both runs the net force is the same, so the centre of mass accelerates identically:
 # $v(t)$ is a straight line of slope $F / m$ wherever the force acts.
+#
+# In 2D the torque and the angular acceleration both point along $z$, so the slide's "angular
+# acceleration parallel to torque" always holds here. In 3D it holds only for a torque along a
+# principal axis of the body, symmetric or not (lesson 15 measures the angle between them).
 
 # %%
 F = np.asarray(FORCE, dtype=float)
@@ -242,18 +247,19 @@ steps = int(round(DURATION / DT))
 OMEGA = "omega (rad/s)"  # the series drawn beside the animation
 
 
-def make_world() -> tuple[World, Body]:
+def make_world(x0: float = 0.0) -> tuple[World, Body]:
     world = World(gravity=(0.0, 0.0), dt=DT)
-    plate = world.add_body(Body(name="plate", type="dynamic", position=(0.0, 0.0), angle=0.0))
+    plate = world.add_body(Body(name="plate", type="dynamic", position=(x0, 0.0), angle=0.0))
     plate.add_shape(Box(width=PLATE[0], height=PLATE[1], density=DENSITY))
     return world, plate
 
 
 def run(lever_in_body: bool) -> tuple[Recording, dict]:
-    """Push the plate for DURATION s; returns the recording and per-step series."""
-    world, plate = make_world()
+    """Push the plate for DURATION s; returns the recording and per-step series. The body-lever
+    plate starts 3 m to the right, so that the animation shows the two side by side."""
+    world, plate = make_world(3.0 if lever_in_body else 0.0)
     anchor = plate.local_point(np.asarray(plate.center_of_mass) + r_lever)  # body frame
-    rec = Recording.from_world(world)
+    rec = Recording.from_world(world, draw="forces")  # keep the applied force for drawing
     rec.capture(world, **{OMEGA: 0.0})
     out = {k: [] for k in ("t", "omega", "vy", "tau", "angle")}
     for _ in range(steps):
@@ -341,9 +347,13 @@ fig.tight_layout()
 save_figure(fig, OUT / "force_and_torque.png", dpi=100)
 
 # %% [markdown]
-# The animation shows both runs overlaid, with $\omega(t)$ beside them: the two plates rise
+# The animation shows both runs side by side, with $\omega(t)$ beside them: the two plates rise
 # together (same $\mathbf{f}$, same $m$) but only the one pushed on a world-fixed lever keeps
-# spinning up.
+# spinning up. The force is drawn as the engine applies it to the body (the `forces` debug
+# layer): the straight arrow is $\mathbf{f}$ moved to the centre of mass, the curved one the
+# torque $\tau = \mathbf{r}\times\mathbf{f}$ that moving it there leaves (the same push, as
+# far as the motion is concerned). The curved arrow of the body-fixed lever shrinks to nothing
+# as its lever turns into line with the force.
 
 # %%
 gif = render_gif(
@@ -355,5 +365,6 @@ gif = render_gif(
     panel=OMEGA,
     trail=True,
     stride=GIF_EVERY,
+    draw="forces",
 )
 print(f"wrote {len(world_rec)} frames to {gif.name}")

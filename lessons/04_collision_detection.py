@@ -48,6 +48,8 @@ from matplotlib.patches import Polygon as PolygonPatch
 
 from sandbox import Body, Box, Circle, Polygon, World
 from sandbox.lessonkit import output_dir, print_table, save_figure
+from sandbox.recording import record
+from sandbox.render import render_gif
 
 # knobs
 SINK = 0.08  # m, how far the shapes of each case are pushed into each other
@@ -242,6 +244,8 @@ def draw_case(ax, name: str, world: World, contacts: list, zoom: float) -> None:
     ax.set(xlim=(centre[0] - zoom, centre[0] + zoom), ylim=(centre[1] - zoom, centre[1] + zoom))
     ax.set_aspect("equal")
     ax.set_title(name, fontsize=10)
+    ax.set_xlabel("x (m)", fontsize=8)
+    ax.set_ylabel("y (m)", fontsize=8)
     ax.tick_params(labelsize=7)
 
 
@@ -274,6 +278,30 @@ save_figure(fig, OUT / "manifolds.png", dpi=90)
 # - **corner-corner**: the rare case gets no special treatment; the same clipping gives two
 #   points a few millimetres apart, with the normal of one of the faces next to the tips.
 # - **circles**: always one point.
+#
+# ### The manifold over time
+#
+# A box dropped corner first onto the ground, drawn with the `contacts` and `normals` debug
+# layers (filled dots: touching points; hollow: speculative points within the contact margin,
+# not yet touching): it lands on one corner (vertex-face: one point, hollow while the corner is
+# still within the margin above the ground), then tips onto its side (edge-face: two points).
+
+# %%
+drop = World()
+ground_d = drop.add_body(Body(name="ground", type="static"))
+ground_d.add_shape(Box(4.0, 0.4, offset=(0.0, -0.2)))
+box_d = drop.add_body(Body(name="box", position=(0.0, 1.0), angle=0.5))
+box_d.add_shape(Box(0.8, 0.5))
+rec_d = record(drop, 90, draw="contacts,normals")
+touching = [int(np.sum(rows[:, 6] >= 0.0)) for rows in rec_d.overlays.contacts]  # depth >= 0
+first = next(k for k, p in enumerate(touching) if p)
+print(
+    f"touching contact points per frame: {touching[first]} at first touch (frame {first}), "
+    f"{touching[-1]} at the end"
+)
+gif = render_gif(rec_d, OUT / "manifold_over_time.gif", fps=30, size_px=360,
+                 draw="contacts,normals", view=(-1.2, 1.2, -0.3, 1.5))  # fmt: skip
+print(f"wrote {len(rec_d)} frames to {gif.name}")
 
 # %% [markdown]
 # ## The slides' circle formulas, by hand and by the engine
@@ -446,3 +474,66 @@ for dx, dtheta in (
                 (f"{dx:+.2f} m, {dtheta:.2f} rad", f"({p[0]:+.3f}, {p[1]:+.3f})", decode(f))
             )
 print_table(["upper box moved by", "point (m)", "feature id"], rows)
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** Disc 1 (radius 0.5 m) at the origin, disc 2 (radius 0.3 m) at $(0.6, 0.45)$. Work out
+# $d$, $p$, $\hat{\mathbf{n}}$ and $\mathbf{p}_c$ with the slides' formulas, then ask the engine.
+
+# %%
+(c1,) = pair_world(((0.0, 0.0), 0.0, Circle(0.5)), ((0.6, 0.45), 0.0, Circle(0.3))).find_contacts()
+print(f"depth {c1.depth:.4f} m, normal ({c1.normal[0]:.4f}, {c1.normal[1]:.4f}), "
+      f"point ({c1.points[0][0]:.4f}, {c1.points[0][1]:.4f})")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $d = |(0.6, 0.45)| = 0.75$ m $\le 0.8$: they overlap by $p = 0.8 - 0.75 = 0.05$ m. The normal
+# is $(0.6, 0.45) / 0.75 = (0.8, 0.6)$ and $\mathbf{p}_c = (0.5 - 0.025)(0.8, 0.6) = (0.38,
+# 0.285)$, midway between the surfaces at $0.5$ and $0.45$ m from the origin. The engine agrees.
+#
+# </details>
+#
+# **2.** Tilt the small box of the edge-face case by 0.02 rad about its centre. How many contact
+# points now, and how deep is each?
+
+# %%
+tilted = pair_world(((0.0, -0.15), 0.0, Box(3.0, 0.3)), ((0.2, 0.25 - SINK), 0.02, Box(0.8, 0.5)))
+for c2 in tilted.find_contacts():
+    print(f"{len(c2.points)} points, depths " + ", ".join(f"{d:.4f} m" for d in c2.depths))
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Still two: one body's edge is clipped against the other's face and both of its ends stay
+# in contact. Turning by $\theta = 0.02$ rad lowers the left corner and raises the right one by
+# $0.4\sin\theta = 0.0080$ m, and raises both by $0.25(1 - \cos\theta) = 0.00005$ m: depths
+# $0.08 + 0.0080 - 0.00005 = 0.0879$ and $0.08 - 0.0080 - 0.00005 = 0.0720$ m, as the run
+# prints. A manifold keeps both corners (rather than the deepest one) so that the solver can
+# stop the box from tipping.
+#
+# </details>
+#
+# **3.** A disc of radius 0.3 m at $(0.65, 0.7)$ above a unit box centred at the origin. Which
+# feature does it touch, and what are $p$ and $\hat{\mathbf{n}}$?
+
+# %%
+(c3,) = pair_world(
+    ((0.0, 0.0), 0.0, Box(1.0, 1.0)), ((0.65, 0.7), 0.0, Circle(0.3))
+).find_contacts()
+print(f"depth {c3.depth:.4f} m, normal ({c3.normal[0]:.4f}, {c3.normal[1]:.4f}), "
+      f"point ({c3.points[0][0]:.4f}, {c3.points[0][1]:.4f})")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The centre is beyond both the top side ($y > 0.5$) and the right side ($x > 0.5$), so the
+# closest feature is the corner $\mathbf{v} = (0.5, 0.5)$, a disc of radius 0:
+# $d = |(0.15, 0.2)| = 0.25$ m, $p = 0.3 - 0.25 = 0.05$ m, $\hat{\mathbf{n}} = (0.6, 0.8)$
+# (neither side's normal), $\mathbf{p}_c = \mathbf{v} - 0.025\,\hat{\mathbf{n}} = (0.485,
+# 0.48)$.
+#
+# </details>

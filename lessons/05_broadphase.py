@@ -142,8 +142,7 @@ for i, (x, y) in enumerate(slide_centres):
     ax.text(x, y, str(i + 1), ha="center", va="center", fontsize=9)
 segments = [slide_centres[[i, j]] for i, j in tested]
 ax.add_collection(LineCollection(segments, colors="tab:red", lw=1.5))
-ax.set_xlim(-0.1, 4.1)
-ax.set_ylim(-0.1, 3.1)
+ax.set(xlim=(-0.1, 4.1), ylim=(-0.1, 3.1), xlabel="x (m)", ylabel="y (m)")
 ax.set_title(f"regular grid: {tests} of {n_slide * (n_slide - 1) // 2} pairs tested (red)")
 fig.tight_layout()
 save_figure(fig, OUT / "slides_grid.png", dpi=100)
@@ -223,19 +222,19 @@ for n in (1000, 10000):
     print_table(["strategy", "pair tests", "ms per call", "overlapping pairs"], table, digits=3)
     print()
 
-fig, axes = plt.subplots(1, 2, figsize=(9.6, 4.0))
+fig, axes = plt.subplots(1, 2, figsize=(9.6, 5.0))
 for name in STRATEGIES:
     data = np.array([r[:3] for r in results[name]], dtype=float)
     axes[0].loglog(data[:, 0], data[:, 1], "o-", color=COLOUR[name], label=name, ms=4)
     axes[1].loglog(data[:, 0], data[:, 2], "o-", color=COLOUR[name], label=name, ms=4)
 all_n = np.array(SIZES, dtype=float)
 axes[0].loglog(all_n, all_n * (all_n - 1) / 2, ":", color="0.5", label="n(n-1)/2")
-axes[0].set_ylabel("AABB overlap tests per call")
-axes[1].set_ylabel("ms per call")
+axes[0].set_ylabel("AABB overlap tests per call (count)")
+axes[1].set_ylabel("time per call (ms)")
 for ax in axes:
-    ax.set_xlabel("number of circles N")
+    ax.set_xlabel("number of circles N (count)")
     ax.grid(True, which="both", alpha=0.3)
-axes[0].legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3)
 axes[0].set_title("pair tests")
 axes[1].set_title("time (best of several calls)")
 fig.tight_layout()
@@ -294,8 +293,7 @@ kept_inner = int(info["kept"][info["axis"] >= 0].sum())
 ax.set_title(f"kd-tree: {kept_inner} circles on split lines, {counts['kdtree']} tests")
 for ax in (axes[0, 0], axes[0, 1], axes[1, 0]):
     draw_circles(ax, centres, radii)
-    ax.set_xlim(-0.6, side + 0.6)
-    ax.set_ylim(-0.6, side + 0.6)
+    ax.set(xlim=(-0.6, side + 0.6), ylim=(-0.6, side + 0.6), xlabel="x (m)", ylabel="y (m)")
 
 ax = axes[1, 1]
 info = describe("sap", boxes)
@@ -303,8 +301,79 @@ lo_hi = info["intervals"][info["order"]]
 ranks = np.arange(PICTURE_N)
 ax.hlines(ranks, lo_hi[:, 0], lo_hi[:, 1], color=COLOUR["sap"], lw=1.5)
 ax.set_xlabel("xy"[info["axis"]] + " (m)")
-ax.set_ylabel("rank in the sorted order")
+ax.set_ylabel("rank in the sorted order (index)")
 ax.set_title(f"sort and sweep on {'xy'[info['axis']]}: {counts['sap']} tests")
 fig.tight_layout()
 save_figure(fig, OUT / "structures.png", dpi=90)
 print("figures written to", OUT.name)
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** In the slides' grid, shrink body 5 to a radius of 0.15 m (it now stays inside one
+# cell). Which pairs does the grid test?
+
+# %%
+radii_e1 = slide_radii.copy()
+radii_e1[4] = 0.15
+_, tests_e1, tested_e1 = find_pairs_traced(
+    "grid", circle_aabbs(slide_centres, radii_e1), record=True, cell_size=1.0
+)
+print(tests_e1, "tests:", sorted(tuple(int(v) + 1 for v in p) for p in tested_e1))
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Body 5's box now spans $y \in [0.65, 0.95]$, inside the cell it shares with bodies 3 and 4;
+# body 6 is left alone in the cell above. The pairs are (1,2), (3,4), (3,5), (4,5): 4 tests,
+# one fewer than the slide's 5. Pairs are tested per shared cell, so a body that spans cells
+# costs tests in each of them.
+#
+# </details>
+#
+# **2.** Keep $N = 1000$ circles but double the coverage (`COVER` 0.3 to 0.6, so the box
+# shrinks). How do the grid's and sort and sweep's test counts change?
+
+
+# %%
+def tests_for(n: int, cover: float, aspect: float = 1.0) -> dict:
+    """Pair tests of every strategy for n circles covering ``cover`` of a w x h box, w = aspect h."""
+    rng_e = np.random.default_rng(SEED)
+    r = rng_e.uniform(*RADII, n)
+    h = math.sqrt(np.sum(math.pi * r * r) / cover / aspect)
+    boxes_e = circle_aabbs(rng_e.uniform(0.0, 1.0, (n, 2)) * (aspect * h, h), r)
+    return {name: find_pairs(name, boxes_e)[1] for name in STRATEGIES if name != "brute"}
+
+
+for cover in (0.3, 0.6):
+    print(f"cover {cover}: {tests_for(1000, cover)}")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The grid tests each circle against its neighbours, and twice the density means about twice as
+# many neighbours: 2469 to 5173 tests (x 2.1). Sort and sweep tests each box against the boxes
+# of a strip one box wide across the world; the strip holds density x side boxes, and the side
+# shrinks as $1/\sqrt{\text{density}}$, so the count grows only by $\sqrt{2}$: 17753 to 25176
+# (x 1.42).
+#
+# </details>
+#
+# **3.** Same 1000 circles and coverage, but in a world ten times wider than high. Which
+# strategy gains, and by how much?
+
+# %%
+for aspect in (1.0, 10.0):
+    print(f"w / h = {aspect:g}: {tests_for(1000, COVER, aspect)}")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Sort and sweep sorts along the axis of larger spread (x here), so the strip of boxes whose x
+# intervals overlap a given box now spans only the short height: $h$ shrinks by $\sqrt{10}$
+# and so does the count, 17753 to 5744 tests (x 0.32). The grid and the trees look at
+# neighbourhoods, whose size does not depend on the world's shape: 2469 to 2378, 1208 to 1170.
+#
+# </details>

@@ -46,6 +46,7 @@ import sandbox
 from sandbox import Body, Box, Circle, World
 from sandbox.geometry import box_vertices
 from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.recording import Recording
 from sandbox.render import record, render_gif
 from sandbox.toi import distance, time_of_impact
 
@@ -202,8 +203,40 @@ for name, (p0, p1) in (("head on", head_on), ("towards the corner", corner)):
 x_cut = head_on[0][0] + results["head on"][3] * (head_on[1][0] - head_on[0][0])
 print(f"head on: the ccd run stops its step at x = {xs['ccd'][2]:.4f} m (by hand {x_cut:.4f} m)")
 
+# %% [markdown]
+# ### Stop at the impact, or resume?
+#
+# The slides' conservative advancement advances to the impact, handles the collision, then
+# *resumes*: the rest of the step, $(1 - t)\,\Delta t$, is still simulated. This engine stops
+# the ccd body at the impact and drops the rest of its step; the next step's ordinary contact
+# solver then handles the collision, with the other contacts, friction and restitution. Box2D v3
+# does the same. Resuming would need a collision solve inside the step for this one pair and a
+# second integration of the remaining time, while every other body has already finished its
+# step: in a pile of touching bodies that is the slides' "virtual stop". The price of stopping is
+# that the ccd body loses up to one step of motion at each impact. For the bullet that bounces
+# ($e$ = `BOUNCE`), the loss shows as a lag: it should have touched the wall at
+# $t_{hit} = (x_{face} - r - x_0)/v$ and left at $e\,v$ right away.
+
 # %%
-fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+t_hit = (FACE - R - xs["no ccd"][0]) / SPEED  # s, when the bullet's surface reaches the wall
+lost = (1.0 - results["head on"][3]) * DT  # s of the cut step that are dropped
+x_ideal = FACE - R - BOUNCE * SPEED * (times - t_hit)  # had it bounced at t_hit
+bounce = xs[f"ccd, e = {BOUNCE}"]
+lag = float(bounce[5] - x_ideal[5])
+print_table(
+    ["quantity", "value"],
+    [
+        ("time of impact in the step (fraction)", f"{results['head on'][3]:.4f}"),
+        ("step time dropped, (1 - t) dt (ms)", f"{1000 * lost:.3f}"),
+        ("bouncing bullet at step 5, engine (m)", f"{bounce[5]:.4f}"),
+        ("bouncing bullet at step 5, bounce at t_hit (m)", f"{x_ideal[5]:.4f}"),
+        ("lag (m)", f"{lag:.4f}"),
+        ("lag / (e v) (ms)", f"{1000 * lag / (BOUNCE * SPEED):.3f}"),
+    ],
+)
+
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(11, 5.4))
 for ax, (name, (p0, p1, rows, t_hand)) in zip(axes, results.items(), strict=True):
     ax.add_patch(Rectangle((FACE, -WALL_HEIGHT / 2), H, WALL_HEIGHT, color="0.5", label="wall"))
     ax.plot([p0[0], p1[0]], [p0[1], p1[1]], "k--", lw=1, label="planned move (one step)")
@@ -224,8 +257,9 @@ for ax, (name, (p0, p1, rows, t_hand)) in zip(axes, results.items(), strict=True
         ax.set(xlim=(p0[0] - 0.3, p1[0] + 0.3), ylim=(-1.2, 1.2))
     else:
         ax.set(xlim=(4.2, 5.6), ylim=(1.3, 2.7))
+    ax.set(xlabel="x (m)", ylabel="y (m)")
     ax.set_title(f"{name}: {len(rows)} iterations, impact at t = {t_hand:.3f}", fontsize=10)
-    ax.legend(loc="lower left", fontsize=8)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize=8, ncol=2)
 fig.suptitle("conservative advancement: each dotted circle is a region the wall is not in")
 fig.tight_layout()
 save_figure(fig, OUT / "conservative_advancement.png", dpi=100)
@@ -348,7 +382,7 @@ print_table(
 print("speeds in m/s; 'first ...' = the lowest swept speed at which some start position fails")
 
 # %%
-fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8))
+fig, (ax, bx) = plt.subplots(1, 2, figsize=(14, 4.8))
 dt = 1 / 60
 v = VDT / dt
 missed, behind = fractions[dt]
@@ -358,9 +392,9 @@ ax.plot(v, np.clip(1 - L_SEEN / VDT, 0, None), "-", color="C0", lw=1,
 ax.plot(v, behind, "s", color="C3", ms=4, label="behind the wall (default settings)")
 ax.plot(v, np.clip(1 - L_STOP / VDT, 0, None), "-", color="C3", lw=1,
         label="1 - (h/2 + r + m) / (v dt)")  # fmt: skip
-ax.set(xlabel="bullet speed v (m/s)", ylabel=f"fraction of the {PHASES} start positions",
+ax.set(xlabel="bullet speed v (m/s)", ylabel=f"fraction of the {PHASES} start positions (1)",
        title="dt = 1/60 s: how many bullets tunnel")  # fmt: skip
-ax.legend(fontsize=8)
+ax.legend(fontsize=8, loc="upper left")
 
 v_line = np.geomspace(2, 400, 100)
 bx.loglog(v_line, L_SEEN / v_line, color="C0", lw=1, label="v dt = h + 2r (slides)")
@@ -371,13 +405,17 @@ bx.loglog([b[1] for b in boundary.values()], dts, "s", color="C3", label="measur
 bx.loglog([SPEED], [DT], "*", color="k", ms=12, label="scenes/bullet.json")
 bx.fill_between(v_line, L_SEEN / v_line, 1, color="C0", alpha=0.12)
 bx.fill_between(v_line, L_STOP / v_line, L_SEEN / v_line, color="C3", alpha=0.12)
-bx.text(90, 0.05, "missed\n(for some starts)", fontsize=9, ha="center")
-bx.text(4.5, 0.0075, "seen, but may be\npushed through", fontsize=9, ha="center")
-bx.text(2.5, 0.0025, "always stopped", fontsize=9)
+bx.text(60, 0.04, "missed\n(for some starts)", fontsize=9, ha="center")
+bx.text(2.3, 0.0022, "always stopped", fontsize=9)
 bx.set(xlabel="bullet speed v (m/s)", ylabel="time step dt (s)", xlim=(2, 400), ylim=(2e-3, 0.1),
        title="tunnelling boundary (no ccd)")  # fmt: skip
-bx.legend(fontsize=8, loc="lower right")
+bx.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
 fig.tight_layout()
+# the middle band is narrow: its label runs along it, at the band's centre line
+band = [(v, math.sqrt(L_STOP * L_SEEN) / v) for v in (6.0, 60.0)]
+(x0, y0), (x1, y1) = bx.transData.transform(band)
+bx.text(*band[0], "seen, but may be pushed through", fontsize=8, va="center", ha="left",
+        rotation=math.degrees(math.atan2(y1 - y0, x1 - x0)), rotation_mode="anchor")  # fmt: skip
 save_figure(fig, OUT / "tunnelling_boundary.png", dpi=100)
 
 # %% [markdown]
@@ -398,18 +436,105 @@ save_figure(fig, OUT / "tunnelling_boundary.png", dpi=100)
 # %% [markdown]
 # ## Animation
 #
-# Both runs of the scene overlaid, one frame per step, slowed down to `GIF_FPS` frames per
-# second; the lines are the paths of the bullets' centres.
+# The three runs of the scene overlaid (no ccd, ccd, ccd bouncing), zoomed on the wall, with
+# `SUBFRAMES` frames per step from the first to the fourth step. Each frame shows every run at
+# its latest step no later than the frame's time, so the engine's bullets *jump* once per step;
+# the grey ghost is the straight flight they are sampled from ($x = v t$, no contacts at all).
+# All bullets fly at $y = 0$; each run is drawn in its own lane, 0.6 m apart.
+# Watch the blue bullet jump from 3.33 m to 6.67 m while the ghost passes through the wall, and
+# the orange one stop at the wall; the green one bounces back at $e\,v$, a step late.
 
 # %%
+SUBFRAMES = 24  # frames per step of the animation
+LANES = {"ghost": 0.9, "no ccd": 0.3, "ccd": -0.3, f"ccd, e = {BOUNCE}": -0.9}  # m, drawn apart
+GHOST = Recording(names=recordings["ccd"].names, types=recordings["ccd"].types,
+                  outlines=recordings["ccd"].outlines)  # fmt: skip
+runs_anim = {name: Recording(names=GHOST.names, types=GHOST.types, outlines=GHOST.outlines)
+             for name in recordings}  # fmt: skip
+frame_times = DT * (1.0 + np.arange(3 * SUBFRAMES + 1) / SUBFRAMES)
+for tf in frame_times:
+    k = int(math.floor(tf / DT + 1e-9))  # the latest step at or before this frame
+    for name, rec in recordings.items():
+        poses = rec.frames[k].copy()
+        poses[1, 1] += LANES[name]  # the bullets fly at y = 0; each run is drawn in its lane
+        runs_anim[name].add_frame(poses, tf)
+    ghost = rec.frames[0].copy()
+    ghost[1] = (SPEED * tf, LANES["ghost"], 0.0)  # x = v t, straight through
+    GHOST.add_frame(ghost, tf)
 gif = render_gif(
-    [recordings["no ccd"], recordings["ccd"]],
+    [GHOST, *runs_anim.values()],
     OUT / "bullet.gif",
-    fps=GIF_FPS,
+    fps=16,
     size_px=480,
-    labels=["no ccd", "ccd"],
+    labels=["straight flight (no contacts)", *runs_anim],
+    colors=["0.6", "C0", "C1", "C2"],
     trail=True,
-    view=(-0.5, 11.0, -2.6, 2.6),
+    view=(3.0, 7.8, -1.2, 1.2),
     axes=True,
 )
-print(f"wrote {len(recordings['ccd'])} frames to {gif.name}")
+print(f"wrote {len(GHOST)} frames to {gif.name}: steps 1 to 4, {SUBFRAMES} frames per step")
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** Pure retroactive detection (no contact margin, no ccd) at $\Delta t = 1/240$ s: up to
+# what speed is the bullet of `scenes/bullet.json` always seen by the wall?
+
+# %%
+seen_e1, _ = sweep(np.array([0.19, 0.22]), 1 / 240, margin=0.0)
+for vdt, row in zip((0.19, 0.22), seen_e1, strict=True):
+    print(f"v = {vdt * 240:.1f} m/s (v dt = {vdt} m): missed by {int((~row).sum())} of {PHASES}")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Always seen while $v\,\Delta t \le h + 2r = 0.2$ m, i.e. up to $0.2 \times 240 = 48$ m/s,
+# four times the 12 m/s of 60 Hz. Just below (45.6 m/s) no start position is missed; at
+# 52.8 m/s a fraction $1 - 0.2/0.22 = 9\%$ of the starts should be, about 3 of 32: the run
+# misses 3.
+#
+# </details>
+#
+# **2.** Start the bouncing ccd bullet ($e$ = `BOUNCE`) at $x = 1$ m instead of 0. How much of
+# its impact step is dropped now, and how far behind the ideal bounce is it afterwards?
+
+# %%
+w2 = bullet_world(ccd=True, restitution=BOUNCE)
+w2.body("bullet").position = (1.0, 0.0)
+x2 = record(w2, 6).poses()[:, 1, 0]
+ideal2 = FACE - R - BOUNCE * SPEED * (times[:7] - (FACE - R - 1.0) / SPEED)
+print(f"x after 6 steps {x2[6]:.4f} m, bounce at t_hit {ideal2[6]:.4f} m, "
+      f"lag {x2[6] - ideal2[6]:.4f} m = {1000 * (x2[6] - ideal2[6]) / (BOUNCE * SPEED):.2f} ms")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The samples are now at 1, 4.333, 7.667 m: the second step starts 0.567 m from touching, so its
+# time of impact is $t = (4.895 - 4.333)/3.333 = 0.169$ (the engine stops 5 mm short) and
+# $(1 - 0.169)\,\Delta t = 13.9$ ms are dropped, against 8.9 ms from $x = 0$. After the bounce
+# the bullet trails the ideal one by $e\,v \times 13.9$ ms $= 1.39$ m. The run prints a lag of
+# 1.39 m, 13.9 ms.
+#
+# </details>
+#
+# **3.** Conservative advancement took 2 iterations head on and 3 towards the corner. How many
+# for a bullet flying at 45 degrees into the middle of the wall's face, from $(3.4, -1.5)$ to
+# $(5.4, 0.5)$?
+
+# %%
+rows3, t3 = advance((3.4, -1.5), (5.4, 0.5))
+print(f"{len(rows3)} iterations, impact at t = {t3:.4f}, "
+      f"engine {engine_toi((3.4, -1.5), (5.4, 0.5)):.4f}")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The nearest feature is the face all the way, so $\hat{\mathbf{n}} = (1, 0)$ stays fixed and
+# the gap closes at the constant rate $|\Delta\mathbf{p}\cdot\hat{\mathbf{n}}| = 2$ m per unit
+# $t$: the first estimate is exact, as head on. 2 iterations (one move and the check),
+# $t = (4.895 - 3.4)/2 = 0.7475$. The sideways part of the motion does not slow it down; only a
+# nearest feature that changes (a corner) does.
+#
+# </details>

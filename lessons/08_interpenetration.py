@@ -158,8 +158,9 @@ for ax, option, rec in zip(axes[1:], OPTIONS, pair_runs, strict=True):
     draw(ax, rec, -1, COLORS[option])
     ax.set_title(f"option {LABELS[option]} (grey: start)")
 for ax in axes:
-    ax.set(aspect="equal", xlim=(-1.2, 1.4), ylim=(-0.7, 1.9))
+    ax.set(aspect="equal", xlim=(-1.2, 1.4), ylim=(-0.7, 1.9), xlabel="x (m)")
     ax.grid(alpha=0.3)
+axes[0].set_ylabel("y (m)")
 fig.tight_layout()
 save_figure(fig, OUT / "overlapping_boxes.png", dpi=100)
 
@@ -232,9 +233,10 @@ for option in OPTIONS:
     s = corner[option]
     axes[1, 0].plot(s["t"], s["depth"], color=c, ls=ls, label=LABELS[option])
     axes[1, 1].plot(s["t"], s["angle"], color=c, ls=ls, label=LABELS[option])
-axes[0, 0].set(xlabel="step", ylabel="deepest overlap (m)", title="two boxes: penetration depth")
+axes[0, 0].set(xlabel="step (count)", ylabel="deepest overlap (m)",
+               title="two boxes: penetration depth")  # fmt: skip
 axes[0, 1].set(
-    xlabel="step", ylabel="light box angle (deg)", title="two boxes: only option 3 turns"
+    xlabel="step (count)", ylabel="light box angle (deg)", title="two boxes: only option 3 turns"
 )
 axes[1, 0].set(xlabel="t (s)", ylabel="deepest overlap (m)", title="box into the ground: depth",
                xlim=(0.0, 0.4))  # fmt: skip
@@ -249,14 +251,19 @@ save_figure(fig, OUT / "penetration.png", dpi=100)
 runs = []
 for option in OPTIONS:
     world, _ = corner_world(option)
-    runs.append(record(world, steps, every=GIF_EVERY, series={"depth (m)": max_depth}))
+    runs.append(record(world, steps, every=GIF_EVERY, draw="contacts,normals", energy=True))
 gif = render_gif(
     runs, OUT / "corner_drop.gif", fps=15, size_px=360, labels=[LABELS[o] for o in OPTIONS],
-    colors=[COLORS[o] for o in OPTIONS], panel="depth (m)", view=(-1.2, 2.2, -0.6, 1.6),
+    colors=[COLORS[o] for o in OPTIONS], panel="energy-bars", view=(-1.2, 2.2, -0.6, 1.6),
+    draw="contacts,normals",
 )  # fmt: skip
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
 # %% [markdown]
+# The animation draws the contact points and normals of each run and, beside it, its energy
+# bars: the total energy of options 1 and 2 *rises* in the first step (the lift, energy from
+# nowhere), and the "lost" bar goes negative by as much; option 3 adds less.
+#
 # **Which handles rotation?** Only option 3. Options 1 and 2 translate along the normal: a
 # corner stuck in a surface is pushed out by moving the whole body, as if it could not turn, so
 # the fix lifts the centre of mass further than needed and adds potential energy (in the
@@ -267,3 +274,91 @@ print(f"wrote {len(runs[0])} frames to {gif.name}")
 # as the collision equation does for velocities, so the push goes where it is cheapest. The
 # price: it works on a linearised contact and removes only a fraction $\beta$ per pass, so a
 # deep overlap takes a few steps.
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** Give the big box the density 0.5 (so both boxes weigh 1 kg). How far does each box move
+# under option 2 now?
+
+
+# %%
+def equal_pair(option: str, heavy_density: float = 0.5) -> tuple[float, float]:
+    """pair_world with the big box at ``heavy_density`` (0.5: 1 kg); distances each box moved."""
+    world = World(gravity=(0.0, 0.0), dt=DT, penetration=option)
+    heavy = world.add_body(Body(name="heavy"))
+    heavy.add_shape(Box(2.0, 1.0, density=heavy_density))
+    _, _, template = pair_world(option)
+    light = world.add_body(Body(name="light", position=template.position, angle=template.angle))
+    light.add_shape(Box(1.0, 1.0, density=1.0))
+    h0, l0 = np.array(heavy.position), np.array(light.position)
+    for _ in range(PAIR_STEPS):
+        world.step()
+    return (float(np.linalg.norm(np.array(heavy.position) - h0)),
+            float(np.linalg.norm(np.array(light.position) - l0)))  # fmt: skip
+
+
+print("option 2, 1 kg + 1 kg: heavy moved {:.4f} m, light moved {:.4f} m".format(
+    *equal_pair("mass_weighted")))  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# With $m_1 = m_2$ the weights $m_2/(m_1 + m_2)$ and $m_1/(m_1 + m_2)$ are both $\frac{1}{2}$:
+# option 2 becomes option 1, each box moves $p/2 = (0.25 - 0.005)/2 = 0.1225$ m. The run prints
+# 0.1225 m for both.
+#
+# </details>
+#
+# **2.** Start the box of the second experiment only 0.15 m deep (`DIVE`). How much potential
+# energy does option 1 add in its first step?
+
+
+# %%
+def first_step_energy(option: str, dive: float) -> tuple[float, float]:
+    world, box = corner_world(option)
+    box.position = (box.position[0], box.position[1] + DIVE - dive)
+    y0, u0 = box.center_of_mass[1], world.potential_energy()
+    world.step()
+    return box.center_of_mass[1] - y0, world.potential_energy() - u0
+
+
+lift_e2, du_e2 = first_step_energy("half", 0.15)
+print(f"DIVE = 0.15 m: lifted {lift_e2:.4f} m, potential energy +{du_e2:.3f} J")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Option 1 against a static ground moves the box by the whole depth less the slop,
+# $0.15 - 0.005 = 0.145$ m, straight up: $\Delta U = m g \Delta y = 1 \times 9.81 \times 0.145
+# = 1.42$ J from nowhere. The run lifts it 0.1448 m (this step's gravity takes off another
+# 0.16 mm) and prints +1.421 J; half the 2.89 J of the 0.3 m dive.
+#
+# </details>
+#
+# **3.** Option 3 removes a fraction $\beta$ = `baumgarte` (0.2) of the remaining overlap in each
+# of its 3 position passes per step: 13 steps for the two boxes. How many with $\beta = 0.4$?
+
+# %%
+world_e3, _, _ = pair_world("impulse")
+world_e3.settings.baumgarte = 0.4
+depths_e3 = [max_depth(world_e3)]
+for _ in range(PAIR_STEPS):
+    world_e3.step()
+    depths_e3.append(max_depth(world_e3))
+steps_e3 = int(np.argmax(np.array(depths_e3) <= 1.01 * world_e3.settings.slop))
+print(f"beta = 0.4: {steps_e3} steps to the slop; depths {np.round(depths_e3[:4], 4)} m")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Each step leaves $(1 - \beta)^3$ of the overlap above the slop: $0.512$ for $\beta = 0.2$,
+# $0.216$ for $\beta = 0.4$. "At the slop" here means within 1% of it, an excess of $5 \times
+# 10^{-5}$ m out of $0.245$: $n \ge \ln(2.04 \times 10^{-4}) / \ln 0.216 = 5.6$, so 6 steps
+# (against $\ln(2.04 \times 10^{-4}) / \ln 0.512 = 12.7$, 13 steps, for 0.2). The run takes 6;
+# after one step the depth is $0.005 + 0.245 \times 0.216 = 0.058$ m (printed 0.0568: the
+# linearised push is not exactly $\beta$ of the true depth once the box turns).
+#
+# </details>

@@ -40,6 +40,7 @@ import numpy as np
 import sandbox
 from sandbox.body import Body
 from sandbox.lessonkit import output_dir, print_table, save_figure, scene_path
+from sandbox.overlays import Layers
 from sandbox.recording import record
 from sandbox.render import render_gif
 from sandbox.shapes import Box
@@ -187,13 +188,22 @@ bx.grid(alpha=0.3)
 fig.tight_layout()
 save_figure(fig, OUT / "incline.png", dpi=100)
 
+# %% [markdown]
+# The animation draws each box's contact points with their normal impulses (magenta) and
+# friction impulses (teal, along the slope) of the last step: on the stuck box ($\mu = 0.6$)
+# friction holds exactly the pull down the slope, on the sliding ones it is capped at $\mu$
+# times the normal impulse; the lower corner of each box carries more of the normal impulse.
+
 # %%
 runs = []
 for mu in MUS:
     world, box, _, along = incline_world(GIF_ANGLE, mu)
     speed = {"v down the slope (m/s)": lambda w, i=box.index, u=along: -float(w.vel[i] @ u)}
-    runs.append(record(world, int(round(1.5 / DT)), every=GIF_EVERY, series=speed))
-gif = render_gif(runs, OUT / "incline.gif", fps=20, size_px=360,
+    runs.append(record(world, int(round(1.5 / DT)), every=GIF_EVERY, series=speed,
+                       draw="contacts,impulses"))  # fmt: skip
+layers = Layers("contacts,impulses", impulse=15.0)  # m of arrow per N s: each corner of a box
+# carries about 0.07 N s per step, drawn about 1 m long
+gif = render_gif(runs, OUT / "incline.gif", fps=20, size_px=360, draw=layers,
                  labels=[f"mu = {mu}" for mu in MUS], panel="v down the slope (m/s)")  # fmt: skip
 print(f"wrote {len(runs[0])} frames to {gif.name}")
 
@@ -260,3 +270,190 @@ bx.legend(fontsize=8)
 bx.grid(alpha=0.3)
 fig.tight_layout()
 save_figure(fig, OUT / "stopping.png", dpi=100)
+
+# %% [markdown]
+# ## Static against kinetic friction
+#
+# Real surfaces hold a little harder than they drag: a box at rest stays put until the push
+# passes the **static** limit $\mu_s N$, and once it slides the friction drops to the **kinetic**
+# $\mu_k N$ ($\mu_k < \mu_s$). The two-coefficient Coulomb model is a small state machine:
+#
+# - **stuck**: friction balances the push exactly, $f = -P$, as long as $|P| \le \mu_s N$;
+# - **sliding**: $f = -\mu_k N\,\mathrm{sign}(v)$, so $m\,a = P - \mu_k N$; it sticks again only
+#   when it stops with $|P| \le \mu_s N$.
+#
+# At break-away the friction drops by $(\mu_s - \mu_k) N$ and the box jumps from $a = 0$ to
+# $a = (\mu_s - \mu_k) g$ at once: the "stick-slip" that makes chalk squeak.
+#
+# **What this engine does**: one $\mu$ per contact, used for both (as pymunk and Box2D do): the
+# solver clamps the friction impulse to $|j_t| \le \mu\,j_n$ whether the contact is at rest or
+# sliding, so the box breaks loose at $\mu N$ and slides with the same $\mu N$. Below, a 1 kg box
+# on the floor is pushed with a force growing at `RAMP` N/s: in the engine ($\mu$ = 0.5) and in
+# the two-coefficient model ($\mu_s$ = `MU_S`, $\mu_k$ = `MU_K`, integrated with the same
+# semi-implicit Euler step). The engine's friction force is read from the contact's tangent
+# impulses, $f = \sum j_t / \Delta t$.
+
+# %%
+RAMP, MU_ENGINE, MU_S, MU_K, PUSH_TIME = 2.5, 0.5, 0.6, 0.4, 3.0  # N/s, 1, 1, 1, s
+SLIDING = 1e-4  # m/s: faster than this the box slides (the solver lets a stuck box creep ~1e-6)
+
+
+def ramp_push_engine(mu: float = MU_ENGINE) -> dict:
+    """A 1 kg box on the floor pushed with P = RAMP t: push, friction force, velocity per step."""
+    world = World(gravity=(0.0, -G), dt=DT)
+    floor = world.add_body(Body(name="floor", type="static"))
+    floor.add_shape(Box(30.0, 0.5, offset=(13.0, -0.25), friction=1.0))
+    box = world.add_body(Body(name="box", position=(0.0, 0.5)))
+    box.add_shape(Box(1.0, 1.0, friction=mu))
+    out = {k: [] for k in ("t", "P", "f", "v")}
+    for _ in range(int(round(PUSH_TIME / DT))):
+        push = RAMP * (world.time + DT)  # the force over this step
+        box.apply_force((push, 0.0))
+        world.step()
+        m = world.manifolds
+        f = float(m.tangent_impulse.sum()) / DT if m is not None and len(m) else 0.0
+        out["t"].append(world.time)
+        out["P"].append(push)
+        out["f"].append(abs(f))
+        out["v"].append(box.velocity[0])
+    return {k: np.array(v) for k, v in out.items()} | {"m": box.mass}
+
+
+def ramp_push_model(m: float, mu_s: float = MU_S, mu_k: float = MU_K) -> dict:
+    """The two-coefficient Coulomb model, the same push and step (v first, then x)."""
+    n, v, stuck = m * G, 0.0, True
+    out = {k: [] for k in ("t", "P", "f", "v")}
+    for k in range(int(round(PUSH_TIME / DT))):
+        push = RAMP * (k + 1) * DT
+        if stuck and abs(push) > mu_s * n:
+            stuck = False  # break-away
+        f = -push if stuck else -mu_k * n * np.sign(v if v != 0.0 else push)
+        v += (push + f) / m * DT
+        if not stuck and v <= 0.0 and abs(push) <= mu_s * n:
+            v, stuck = 0.0, True
+        out["t"].append((k + 1) * DT)
+        out["P"].append(push)
+        out["f"].append(abs(f))
+        out["v"].append(v)
+    return {k: np.array(v) for k, v in out.items()}
+
+
+engine_run = ramp_push_engine()
+model_run = ramp_push_model(engine_run["m"])
+n_force = engine_run["m"] * G
+rows = []
+for name, r, mu_break, mu_slide in (("engine, one mu", engine_run, MU_ENGINE, MU_ENGINE),
+                                    ("model, mu_s / mu_k", model_run, MU_S, MU_K)):  # fmt: skip
+    k = int(np.argmax(r["v"] > SLIDING))  # the first step that slides
+    late = r["t"] > r["t"][k] + 0.2  # well into sliding
+    rows.append((name, mu_break * n_force, r["P"][k - 1], r["P"][k], r["f"][k - 1],
+                 float(np.median(r["f"][late])), mu_slide * n_force,
+                 f"{np.abs(r['v'][:k]).max():.1e}"))  # fmt: skip
+print(f"m = {engine_run['m']:.3f} kg, N = m g = {n_force:.3f} N, push grows {RAMP} N/s")
+print_table(["run", "mu_s N (N)", "last push stuck (N)", "first push sliding (N)",
+             "friction just before (N)", "friction sliding (N)", "mu_k N (N)",
+             "creep while stuck (m/s)"], rows, 3)  # fmt: skip
+jump = (MU_S - MU_K) * G
+k_m = int(np.argmax(model_run["v"] > 0))
+a_after = (model_run["v"][k_m + 1] - model_run["v"][k_m]) / DT
+print(
+    f"model: acceleration right after break-away {a_after:.3f} m/s^2 "
+    f"(P/m - mu_k g = {RAMP * model_run['t'][k_m + 1] / engine_run['m'] - MU_K * G:.3f}; "
+    f"jump (mu_s - mu_k) g = {jump:.3f})"
+)
+
+# %%
+fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 4.6))
+for name, r, color in (("engine (mu = 0.5)", engine_run, "C0"),
+                       (f"model (mu_s = {MU_S}, mu_k = {MU_K})", model_run, "C3")):  # fmt: skip
+    wide = color == "C0"  # the engine drawn wide under the model: both follow f = P while stuck
+    ax.plot(r["P"], r["f"], color=color, lw=3.5 if wide else 1.3, alpha=0.6 if wide else 1.0,
+            label=name)  # fmt: skip
+    bx.plot(r["t"], r["v"], color=color, label=name)
+for mu, ls in ((MU_ENGINE, ":"), (MU_S, "--"), (MU_K, "-.")):
+    ax.axhline(mu * n_force, color="0.4", ls=ls, lw=1, label=f"{mu} x N = {mu * n_force:.2f} N")
+ax.plot([0, RAMP * PUSH_TIME], [0, RAMP * PUSH_TIME], color="0.7", lw=4, alpha=0.5, zorder=0,
+        label="f = P (stuck)")  # fmt: skip
+ax.set(xlabel="push P (N)", ylabel="friction force |f| (N)", ylim=(0, 7.5),
+       title="friction against the push")  # fmt: skip
+bx.set(xlabel="t (s)", ylabel="box velocity (m/s)", title="stuck, then sliding")
+ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+bx.legend(fontsize=8, loc="upper left")
+for a in (ax, bx):
+    a.grid(alpha=0.3)
+fig.tight_layout()
+save_figure(fig, OUT / "static_kinetic.png", dpi=100)
+
+# %% [markdown]
+# The engine's box holds exactly until the push passes $\mu N = 4.905$ N (the last step it
+# stays put is at $P$ just below, the first that moves just above; while stuck the iterative
+# solver lets it creep at a few micrometres per second) and then feels the same $\mu N$ while
+# sliding. The model holds until $\mu_s N = 5.886$ N, then the friction drops to
+# $\mu_k N = 3.924$ N and the box takes off with $a = P/m - \mu_k g$, about
+# $(\mu_s - \mu_k) g = 1.96$ m/s$^2$ right after break-away: the drop of the red curve on the
+# left. An engine could offer it per contact (the friction clamp $\mu_s$ while a contact point's
+# tangential speed is below a small threshold, $\mu_k$ above); the one-coefficient solvers keep
+# one clamp so that resting and sliding contacts are solved alike and a stack does not creep.
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** A box with $\mu = 0.3$ on a 20 degree ramp: does it slide, and at what acceleration?
+
+# %%
+print(f"mu = 0.3, 20 deg: a = {slide(20, 0.3)['a']:.4f} m/s^2 "
+      f"(tan 20 deg = {math.tan(math.radians(20)):.3f})")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $\tan 20° = 0.364 > 0.3$: it slides, with $a = g(\sin 20° - 0.3\cos 20°) =
+# 9.81 \times (0.3420 - 0.2819) = 0.589$ m/s$^2$. The engine prints 0.589.
+#
+# </details>
+#
+# **2.** Push a box along the floor at $v_0 = 3$ m/s with $\mu = 0.25$. Where does it stop?
+
+# %%
+r_e2 = push(3.0, 0.25, duration=3.0 / (0.25 * G) + 0.4)
+print(f"stops after {r_e2['x'][-1]:.4f} m, at t = {r_e2['stop']:.3f} s")
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $v_0^2/(2\mu g) = 9 / 4.905 = 1.835$ m, less the integrator's $v_0\Delta t/2 = 0.025$ m:
+# 1.810 m, after $v_0/(\mu g) = 1.22$ s. The engine prints 1.8099 m and stops within a step of
+# 1.22 s.
+#
+# </details>
+#
+# **3.** In the two-coefficient model ($\mu_s = 0.6$, $\mu_k = 0.4$), a steady push of 5 N on
+# the 1 kg box. Does the box move if it starts at rest? And if it is already sliding at 1 m/s?
+
+
+# %%
+def steady_push(v0: float, push: float = 5.0, seconds: float = 1.0) -> float:
+    """The two-coefficient model under a constant push; the velocity after ``seconds``."""
+    n, v, stuck = G, v0, v0 == 0.0
+    for _ in range(int(round(seconds / DT))):
+        if stuck and push > MU_S * n:
+            stuck = False
+        f = -push if stuck else -MU_K * n * np.sign(v if v != 0.0 else push)
+        v += (push + f) * DT
+    return v
+
+
+print(f"from rest: v(1 s) = {steady_push(0.0):.4f} m/s; "
+      f"from 1 m/s: v(1 s) = {steady_push(1.0):.4f} m/s")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# From rest, 5 N is below $\mu_s N = 5.886$ N: it stays stuck, $v = 0$. Already sliding, the
+# friction is only $\mu_k N = 3.924$ N, so the 5 N push wins and the box *speeds up* at
+# $5 - 3.924 = 1.076$ m/s$^2$: $v(1\,\mathrm{s}) = 2.076$ m/s. The same push, two outcomes,
+# depending on the history: that hysteresis is what the engine's single $\mu$ cannot show.
+#
+# </details>

@@ -144,6 +144,34 @@ save_figure(fig, OUT / "damped_spring.png", dpi=100)
 # That is why the spring is a force
 # generator and not a constraint: the integrator you choose sees it.
 #
+# The animation shows it with energy bars (as PhET's "Masses and Springs"): the same undamped
+# box on the spring under explicit Euler (top) and semi-implicit Euler (bottom). Elastic and
+# kinetic energy trade places every quarter period; under explicit Euler the total grows every
+# step, by the factor $1 + (\omega\Delta t)^2$ of lesson 01, so the "lost" bar goes negative
+# (energy from nowhere), while semi-implicit Euler's total only wobbles.
+
+# %%
+bar_runs = []
+for integrator, y in (("explicit_euler", 0.0), ("semi_implicit_euler", -1.5)):
+    world = World(gravity=(0.0, 0.0), dt=DT, integrator=integrator)
+    anchor = world.add_body(Body("anchor", type="static", position=(0.0, y)))
+    box = world.add_body(Body("box", position=(2.0 + STRETCH, y)))
+    box.add_shape(Box(1.0, 1.0, density=MASS))
+    world.add_joint(SpringJoint(anchor, box, rest_length=2.0, stiffness=STIFFNESS))
+    bar_runs.append(record(world, 240, every=2, energy=True))
+grown = [sum(r.series[k][-1] for k in ("energy.kinetic_linear", "energy.elastic"))
+         / sum(r.series[k][0] for k in ("energy.kinetic_linear", "energy.elastic"))
+         for r in bar_runs]  # fmt: skip
+w_dt = math.sqrt(STIFFNESS / MASS) * DT
+print(
+    f"after 4 s: explicit Euler's energy x {grown[0]:.3f} ((1 + (w dt)^2)^240 = "
+    f"{(1 + w_dt**2) ** 240:.3f}), semi-implicit Euler's x {grown[1]:.4f}"
+)
+gif = render_gif(bar_runs, OUT / "spring_energy_bars.gif", fps=30, size_px=360,
+                 labels=["explicit Euler", "semi-implicit Euler"], panel="energy-bars")  # fmt: skip
+print(f"wrote {len(bar_runs[0])} frames to {gif.name}")
+
+# %% [markdown]
 # ## Floating
 #
 # In 2D the fluid density is a mass per area. A body of density $\rho_b$ floats when the water
@@ -156,7 +184,8 @@ save_figure(fig, OUT / "damped_spring.png", dpi=100)
 
 # %%
 world = World(dt=DT)
-world.add_body(Body("floor", type="static", position=(8.5, -4.25))).add_shape(Box(22.0, 0.5))
+# the floor's top is at y = -4 m; it is 15 m thick so that drawn, it fills the view below the tank
+world.add_body(Body("floor", type="static", position=(8.5, -11.5))).add_shape(Box(22.0, 15.0))
 for x in (-2.0, 19.0):  # tank walls, their tops at the water line
     world.add_body(Body(f"wall{x:g}", type="static", position=(x, -2.0))).add_shape(Box(0.3, 4))
 for k, rho in enumerate(DENSITIES):
@@ -201,10 +230,12 @@ print(
 )
 
 # %% [markdown]
-# The submerged fraction equals the density ratio for every body; planks and discs sit at the
-# closed-form draft; the squares tip onto an edge or a corner. The stone sinks: once under
-# water it accelerates at $g(1 - \rho_{fluid}/\rho_b)$ less the water's drag, then rests on the
-# floor. The same scene in pymunk (where the bridge applies the same buoyancy formulas each
+# The submerged fraction equals the density ratio for every body, and planks and discs sit at
+# the closed-form draft.
+
+# %% [markdown]
+# The stone sinks: once under water it accelerates at $g(1 - \rho_{fluid}/\rho_b)$ less the
+# water's drag, then rests on the floor. The same scene in pymunk (where the bridge applies the same buoyancy formulas each
 # step) floats the planks and discs at the same heights:
 
 # %%
@@ -228,5 +259,163 @@ ax.legend(fontsize=8)
 fig.tight_layout()
 save_figure(fig, OUT / "sinking.png", dpi=100)
 
-gif = render_gif(rec, OUT / "floating.gif", fps=30, size_px=360, panel=HEIGHT)
+# the view is the tank, wall to wall: the water (drawn across the whole view) stays inside it
+gif = render_gif(rec, OUT / "floating.gif", fps=30, size_px=360, panel=HEIGHT,
+                 view=(-2.15, 19.15, -18.8, 2.5))  # fmt: skip
 print(f"wrote {len(rec)} frames to {gif.name}")
+
+# %% [markdown]
+# ## How far does a floating square tip?
+# A floating body settles where the energy
+# $E = m g\,(y_G - y_B)$ is lowest, $y_G$ its centre of mass and $y_B$ the centroid of the water
+# it displaces, with the waterline placed (for each tilt $\theta$) so that the displaced area
+# stays $A\,\rho_b/\rho_{fluid}$: the lower the centre of mass sits below the centre of
+# buoyancy, the better. For a unit square (clipped at the waterline, as the buoyancy force does) the minimum is *not* always on a corner: at density 0.5 it floats
+# corner-down at 45 degrees, at 0.25 and 0.75 tilted by $\arctan\frac{1}{2} = 26.6$ degrees, and
+# below 0.21 or above 0.79 flat. (By symmetry a tilt of $\theta$ and $90° - \theta$ are the same
+# pose: the table folds the measured angles into $[0°, 45°]$.) After the animation's 10 s the
+# squares still rock a little; 20 s later they have settled.
+
+
+# %%
+def clip_below(points: list, level: float) -> list:
+    """The part of a convex polygon below y = ``level`` (one Sutherland-Hodgman pass)."""
+    out = []
+    for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1], strict=True):
+        if y0 <= level:
+            out.append((x0, y0))
+        if (y0 < level) != (y1 < level):  # the edge crosses the waterline
+            out.append((x0 + (level - y0) * (x1 - x0) / (y1 - y0), level))
+    return out
+
+
+def area_and_centroid_y(points: list) -> tuple[float, float]:
+    """Area (m^2) and centroid height (m) of a polygon (shoelace formula)."""
+    a = cy = 0.0
+    for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1], strict=True):
+        cross_ = x0 * y1 - x1 * y0
+        a += cross_
+        cy += (y0 + y1) * cross_
+    return 0.5 * a, cy / (3.0 * a) if a else 0.0
+
+
+def buoyancy_energy(theta: float, ratio: float) -> float:
+    """(y_G - y_B) of a unit square tilted by theta with a fraction ``ratio`` under water (m)."""
+    c, s_ = math.cos(theta), math.sin(theta)
+    corners = [
+        (c * x - s_ * y, s_ * x + c * y)
+        for x, y in ((-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5))
+    ]
+    lo, hi = -0.75, 0.75  # the waterline, found by bisection on the submerged area
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (
+            (mid, hi) if area_and_centroid_y(clip_below(corners, mid))[0] < ratio else (lo, mid)
+        )
+    return 0.0 - area_and_centroid_y(clip_below(corners, 0.5 * (lo + hi)))[1]
+
+
+tilts = np.radians(np.linspace(0.0, 45.0, 451))
+landscape = {rho: np.array([buoyancy_energy(t, rho) for t in tilts]) for rho in DENSITIES}
+
+
+def tilt_of(body: Body) -> float:
+    """The body's tilt folded into [0, 45] degrees (a square looks the same every 90)."""
+    a = abs(math.degrees(body.angle)) % 90.0
+    return min(a, 90.0 - a)
+
+
+def refined_minimum(e: np.ndarray) -> float:
+    """The tilt (deg) of the minimum of ``e`` on the grid ``tilts``, refined by a parabola."""
+    k = int(np.clip(np.argmin(e), 1, len(e) - 2))
+    y0, y1, y2 = e[k - 1 : k + 2]
+    step = float(tilts[1] - tilts[0])
+    shift = 0.5 * (y0 - y2) / (y0 - 2 * y1 + y2) if y0 - 2 * y1 + y2 > 0 else 0.0
+    return math.degrees(tilts[k] + shift * step)
+
+
+at_10_s = {rho: tilt_of(world.body(f"square {rho}")) for rho in DENSITIES}
+for _ in range(1200):  # 20 s more: the squares rock slowly (the water's drag damps them)
+    world.step()
+rows = []
+for rho in DENSITIES:
+    theory_tilt, measured_tilt = (
+        refined_minimum(landscape[rho]),
+        tilt_of(world.body(f"square {rho}")),
+    )
+    rows.append((rho, theory_tilt, at_10_s[rho], measured_tilt, measured_tilt - theory_tilt))
+print_table(["square, rho_b / rho_f", "theory tilt (deg)", "tilt at 10 s (deg)",
+             "tilt at 30 s (deg)", "difference (deg)"], rows, 3)  # fmt: skip
+print(f"arctan(1/2) = {math.degrees(math.atan(0.5)):.2f} deg")
+
+fig, ax = plt.subplots(figsize=(7.5, 4))
+for k, rho in enumerate(DENSITIES):
+    e = landscape[rho]
+    ax.plot(np.degrees(tilts), e - e.min(), color=f"C{k}", label=f"density ratio {rho}")
+    tilt_m = rows[k][3]
+    ax.plot([tilt_m], [buoyancy_energy(math.radians(tilt_m), rho) - e.min()], "o",
+            color=f"C{k}", ms=7, mfc="none")  # fmt: skip
+ax.plot([], [], "o", color="0.3", mfc="none", label="where the engine's square settled")
+ax.set(xlabel="tilt of the square (deg)", ylabel="(y_G - y_B) - minimum (m)",
+       title="floating square: energy against tilt")  # fmt: skip
+ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+ax.grid(alpha=0.3)
+fig.tight_layout()
+save_figure(fig, OUT / "floating_square.png", dpi=100)
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** A 2 x 0.5 m plank of density 0.6 floats flat. How deep is it in the water? And a unit
+# square of density 0.1, released tilted by 0.1 rad: at what tilt does it settle?
+
+# %%
+pond = World(dt=DT)
+pond.add_body(Body("plank 0.6", position=(0.0, 0.3))).add_shape(Box(2.0, 0.5, density=0.6))
+pond.add_body(Body("square 0.1", position=(4.0, 0.5), angle=0.1)).add_shape(
+    Box(1.0, 1.0, density=0.1)
+)
+pond.add_force(Buoyancy(0.0, FLUID, linear_drag=2.0, angular_drag=0.5))
+for _ in range(1200):
+    pond.step()
+print(f"plank draft {0.25 - pond.body('plank 0.6').position[1]:.4f} m; square tilt "
+      f"{tilt_of(pond.body('square 0.1')):.3f} deg (theory "
+      f"{refined_minimum(np.array([buoyancy_energy(t, 0.1) for t in tilts])):.1f} deg)")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# The plank displaces its own weight: draft $= h\,\rho_b/\rho_{fluid} = 0.5 \times 0.6 = 0.3$ m;
+# the run prints 0.3000 m. The light square floats *flat*: at density 0.1 the energy
+# $y_G - y_B$ is lowest at 0 degrees (a shallow, wide submerged strip keeps the centre of
+# buoyancy high), and the tilted square rights itself to 0.000 degrees.
+#
+# </details>
+#
+# **2.** A 1 kg box on a spring of $k = 80$ N/m (four times stiffer), no damping. Its period?
+
+# %%
+stiff = World(gravity=(0.0, 0.0), dt=DT, integrator="rk4")
+anchor_e2 = stiff.add_body(Body("anchor", type="static"))
+box_e2 = stiff.add_body(Body("box", position=(2.0 + STRETCH, 0.0)))
+box_e2.add_shape(Box(1.0, 1.0, density=MASS))
+stiff.add_joint(SpringJoint(anchor_e2, box_e2, rest_length=2.0, stiffness=80.0, damping=0.0))
+xs_e2 = []
+for _ in range(300):
+    stiff.step()
+    xs_e2.append(box_e2.position[0] - 2.0)
+xs_e2 = np.array(xs_e2)
+peaks_e2 = np.flatnonzero((xs_e2[1:-1] > xs_e2[:-2]) & (xs_e2[1:-1] >= xs_e2[2:])) + 1
+print(f"k = 80 N/m: period {DT * float(np.mean(np.diff(peaks_e2))):.4f} s "
+      f"(peaks are whole steps apart)")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# $T = 2\pi\sqrt{m/k} = 2\pi\sqrt{1/80} = 0.7025$ s: four times the stiffness halves the period
+# (1.405 s at 20 N/m). The run prints 0.7028 s: its peaks are found on whole steps of 1/60 s,
+# so over the 6 periods counted the mean is known to about a step / 6 = 0.003 s.
+#
+# </details>

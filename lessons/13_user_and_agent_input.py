@@ -99,35 +99,46 @@ rows = [
     ("final distance to target (m)", distance(world)),
     ("final speed (m/s)", math.hypot(*lander.velocity)),
     ("time to stay within 5 cm (s)", settle),
-    ("largest thrust, either side (N)", float(log[:, 1:].max())),
+    ("largest left thrust (N)", float(log[:, 1].max())),
+    ("largest right thrust (N)", float(log[:, 2].max())),
+    ("steps with the left thruster at its bound", int(np.sum(log[:, 1] >= MAX_THRUST - 1e-9))),
+    ("steps with the right thruster at its bound", int(np.sum(log[:, 2] >= MAX_THRUST - 1e-9))),
     ("final total thrust (N)", float(log[-1, 1:].sum())),
     ("weight m g (N)", lander.mass * G),
 ]
 print_table(["autopilot, calm air", "value"], rows)
 
 # %%
-fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 3.8))
+fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.6))
 ax.plot(log[:, 0], log[:, 1], label="left thruster")
 ax.plot(log[:, 0], log[:, 2], label="right thruster")
 ax.axhline(MAX_THRUST, color="k", ls=":", lw=1, label="bound")
 ax.axhline(lander.mass * G / 2, color="C2", ls="--", lw=1, label="half the weight")
 ax.set(xlabel="t (s)", ylabel="thrust (N)", title="the autopilot's commands")
-ax.legend(fontsize=8)
 frames = np.array(calm.frames)[:, 1]  # lander poses
 bx.plot(calm.times, frames[:, 0], label="x")
 bx.plot(calm.times, frames[:, 1], label="y")
-bx.plot(calm.times, np.degrees(frames[:, 2]) / 10, label="angle / 10 (deg)")
 for v in TARGET:
     bx.axhline(v, color="k", ls=":", lw=1)
-bx.set(xlabel="t (s)", ylabel="m", title="the lander's path")
-bx.legend(fontsize=8)
+bx.plot([], [], color="k", ls=":", lw=1, label="target x, y")
+bx.set(xlabel="t (s)", ylabel="position (m)", title="the lander's path")
+tx = bx.twinx()  # the tilt is an angle: its own axis, on the right
+tx.plot(calm.times, np.degrees(frames[:, 2]), color="C2", label="tilt")
+tx.set_ylabel("tilt (deg)")
+lines = bx.get_lines() + tx.get_lines()
+bx.legend([ln for ln in lines if not ln.get_label().startswith("_")],
+          [ln.get_label() for ln in lines if not ln.get_label().startswith("_")],
+          fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=4)  # fmt: skip
+ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
 fig.tight_layout()
 save_figure(fig, OUT / "autopilot.png", dpi=100)
 
 # %% [markdown]
-# At first both thrusters sit at their bound (a climb the formula wants faster than 5 N can
-# give), then the difference between them tilts the lander towards the target and back; at
-# the end their sum carries the weight, $T_L + T_R = mg$.
+# At first the formula asks for a steep climb *and* a turn to the right, towards the target:
+# more thrust on the left. The left thruster sits at its 5 N bound for the first 8 steps
+# (0.13 s) while the right one gives at most 4.41 N (the table above); then the difference
+# between them tilts the lander towards the target and back, and at the end their sum carries
+# the weight, $T_L + T_R = mg$.
 #
 # ## The same flight as a script (a user)
 #
@@ -136,6 +147,10 @@ save_figure(fig, OUT / "autopilot.png", dpi=100)
 # flight to the last bit: the engine is deterministic. But a script does not look at the
 # lander. Add a side wind: the autopilot notices the drift and leans into it, the script flies
 # the calm-air commands and misses.
+#
+# The animation draws what the controllers do, with the `forces` debug layer: the thrust and
+# the wind summed into one force arrow at each lander's centre of mass, and the torque of the
+# uneven thrusters as a curved arrow.
 #
 # Note the autopilot's own miss in the wind: a PD controller balances a steady force $F$ with
 # a steady offset, $m k_p \Delta x = F$, i.e. $\Delta x = F / (m k_p)$ (an integral term
@@ -151,10 +166,10 @@ print(f"identical: {replayed.position == lander.position and replayed.angle == l
 windy_world, windy = lander_world(WIND)
 windy_pilot = LanderController(TARGET, lander_thrusters(1.0, 0.5, MAX_THRUST))
 windy.controller = windy_pilot
-windy_rec = record(windy_world, STEPS, every=3, series={DIST: distance})
+windy_rec = record(windy_world, STEPS, every=3, series={DIST: distance}, draw="forces")
 script_world, scripted = lander_world(WIND)
 scripted.controller = Scripted.from_log(pilot.log, lander_thrusters(1.0, 0.5, MAX_THRUST))
-script_rec = record(script_world, STEPS, every=3, series={DIST: distance})
+script_rec = record(script_world, STEPS, every=3, series={DIST: distance}, draw="forces")
 
 # a hand-written script (a player's keys): climb, coast up, lean right, fly, level, lean back
 # to brake, level, hover. Each lean is a push on one side then the other (start and stop the
@@ -210,5 +225,52 @@ gif = render_gif(
     labels=["autopilot (feedback)", "script (open loop)"],
     panel=DIST,
     trail=True,
+    draw="forces",
 )
 print(f"wrote {len(windy_rec)} frames to {gif.name}")
+
+# %% [markdown]
+# ## Exercises
+#
+# Predict first, then run the cell under the question, then open the answer.
+#
+# **1.** Double the side wind to 0.3 N. How far from the target does the autopilot hold the
+# lander now?
+
+# %%
+world_e1, lander_e1 = lander_world((-0.3, 0.0))
+lander_e1.controller = LanderController(TARGET, lander_thrusters(1.0, 0.5, MAX_THRUST))
+record(world_e1, STEPS, every=STEPS)
+print(f"wind 0.3 N: {distance(world_e1):.4f} m from the target, "
+      f"F / (m kp) = {0.3 / (lander_e1.mass * pilot.kp):.4f} m")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# A PD controller balances a steady force with a steady offset, $\Delta x = F/(m k_p) =
+# 0.3 / (0.5 \times 3) = 0.2$ m: twice the 0.1 m of the 0.15 N wind. The run holds it 0.210 m
+# away, about 5% beyond the formula, as at 0.15 N (0.110 m): the offset doubles with the wind.
+# Only an integral term (or a model of the wind) removes it.
+#
+# </details>
+#
+# **2.** Give the lander weaker engines, 2.4 N per thruster. What happens?
+
+# %%
+world_e2, lander_e2 = lander_world()
+lander_e2.controller = LanderController(TARGET, lander_thrusters(1.0, 0.5, 2.4))
+record(world_e2, STEPS, every=STEPS)
+print(f"2.4 N thrusters: after {SECONDS:g} s at {tuple(round(c, 3) for c in lander_e2.position)} m, "
+      f"v_y = {lander_e2.velocity[1]:.3f} m/s, tilt {math.degrees(lander_e2.angle):.1f} deg")  # fmt: skip
+
+# %% [markdown]
+# <details><summary>Answer</summary>
+#
+# Both thrusters together give 4.8 N, less than the weight $0.5 \times 9.81 = 4.905$ N: the
+# autopilot asks for full thrust on both sides, and with both clamped at their bound there is no
+# difference left to turn with. The lander sinks straight down at $(4.8 - 4.905)/0.5 = -0.21$
+# m/s$^2$: after 7 s $v_y = -1.47$ m/s and $y = -\frac{1}{2}\,0.21 \times 7^2 = -5.15$ m (the
+# run: $-5.157$ m; semi-implicit Euler adds $\frac{1}{2} a\,\Delta t\,t$). Bounded actuators
+# can make a goal unreachable, whatever the controller.
+#
+# </details>

@@ -257,38 +257,61 @@ def _table(result: ComparisonResult, spec: dict) -> str:
 # ---------------------------------------------------------------- figures
 
 
+ROUNDING = 1e-9  # m or rad: deviations below this are rounding, drawn on a linear scale
+PER_BODY = 12  # a deviation figure draws one curve per body up to this many, else the largest
+
+
 def _save_figure(fig, path: Path) -> None:
+    from sandbox.figure_standard import enforce
+
+    enforce(fig, path.name)  # the lessons' figure standard, when SANDBOX_CHECK_FIGURES is set
     with atomic_write(path, "wb") as f:
         fig.savefig(f, format="png", dpi=100)
 
 
 def _deviation_figure(result: ComparisonResult, path: Path) -> None:
+    """Deviation from pymunk against time: one curve per moving body when there are at most
+    ``PER_BODY`` curves, else the largest over the bodies (one curve per run)."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(8, 6))
+    fig = Figure(figsize=(9, 6))
     axes = fig.subplots(2, 1, sharex=True)
     styles = ("-", "--", ":", "-.")
     labels = [r.label for r in result.runs if r.label != "pymunk"]
+    per_body = 0 < len(result.moving) * len(labels) <= PER_BODY
+    t = result.runs[0].times
     for ax, data, what in (
         (axes[0], result.position_deviation, "|p - p_pymunk| (m)"),
         (axes[1], result.angle_deviation, "|angle - angle_pymunk| (rad)"),
     ):
         peak = max((float(data[lab].max()) for lab in labels if data[lab].size), default=0.0)
-        t = result.runs[0].times
         for k, lab in enumerate(labels):
+            if not per_body:
+                worst = data[lab].max(axis=1) if data[lab].size else np.zeros(len(t))
+                name = f"largest of {len(result.moving)} bodies" + (f" ({lab})" if k else "")
+                ax.plot(t, worst, styles[k % 4], color=f"C{k}", linewidth=1.0, label=name)
+                continue
             for j, i in enumerate(result.moving):
-                y = data[lab][:, j]
                 name = result.names[i] if len(labels) == 1 else f"{result.names[i]} ({lab})"
-                ax.plot(t, y, styles[k % 4], color=f"C{j % 10}", linewidth=1.0, label=name)
-        if peak > 0.0:  # log scale above 1e-9 of the peak, linear below (so 0 shows as 0)
-            ax.set_yscale("symlog", linthresh=max(peak * 1e-9, 1e-300))
+                ax.plot(t, data[lab][:, j], styles[k % 4], color=f"C{j % 10}", linewidth=1.0,
+                        label=name)  # fmt: skip
+        # log scale above ROUNDING, linear below: rounding differences (1e-14) show as 0, not as
+        # data on a log axis reaching down to 1e-23
+        ax.set_yscale("symlog", linthresh=ROUNDING)
+        ax.set_ylim(0.0, max(2.0 * peak, 10.0 * ROUNDING))
         ax.set_ylabel(what)
         ax.grid(alpha=0.3)
-    if 0 < len(result.moving) * len(labels) <= 12:
-        for text in axes[0].legend(fontsize=7).get_texts():
-            text.set_parse_math(False)  # body names as typed, "$" and all
+        if ax.get_lines():
+            for text in ax.legend(
+                fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0)
+            ).get_texts():
+                text.set_parse_math(False)  # body names as typed, "$" and all
     axes[1].set_xlabel("t (s)")
-    axes[0].set_title(f"{result.scene}: deviation from pymunk, per body", parse_math=False)
+    axes[0].set_title(
+        f"{result.scene}: position deviation from pymunk (linear below {ROUNDING:g}: rounding)",
+        parse_math=False,
+    )
+    axes[1].set_title("angle deviation from pymunk")
     fig.tight_layout()
     _save_figure(fig, path)
 

@@ -14,10 +14,10 @@ from sandbox.solvers import KEEPS_IMPULSES
 # soft-step settings and their defaults, for a Settings that does not know them yet
 SOFT_DEFAULTS = (
     ("substeps", 4),
-    ("contact_hertz", 30.0),
+    ("contact_hertz", 60.0),
     ("contact_damping_ratio", 10.0),
     ("joint_hertz", 60.0),
-    ("joint_damping_ratio", 2.0),
+    ("joint_damping_ratio", 5.0),
     ("max_push_speed", 3.0),
 )
 

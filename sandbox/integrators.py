@@ -248,13 +248,10 @@ def euler_velocity(b, gravity, dt: float, explicit: bool) -> None:
 
 
 @njit
-def integrate_velocities(model, context) -> None:
-    """The velocity stage: each dynamic body's velocity gets the integrator's increment;
-    its free-motion move is remembered for :func:`integrate_positions`. Kinematic bodies move
-    at their own velocity; static bodies do not move."""
-    ctx = context[0]
-    bodies, _, _, joints, generators = model
-    dt, method, gravity = ctx["dt"], ctx["integrator"], ctx["gravity"]
+def gather_forces(bodies) -> None:
+    """Add each body's constant force and torque to what was applied for this step, and keep
+    the total as ``applied_force``, ``applied_torque`` (what the step applies besides gravity,
+    force generators and contacts; cleared again by :func:`clear_forces`)."""
     for i in range(bodies.shape[0]):
         b = bodies[i]
         for k in range(2):
@@ -262,6 +259,25 @@ def integrate_velocities(model, context) -> None:
             b["applied_force"][k] = b["force"][k]
         b["torque"] += b["const_torque"]
         b["applied_torque"] = b["torque"]
+
+
+@njit
+def clear_forces(bodies) -> None:
+    """Empty the force and torque accumulators after the step."""
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        b["force"][0] = b["force"][1] = b["torque"] = 0.0
+
+
+@njit
+def integrate_velocities(model, context, dt: float) -> None:
+    """The velocity stage over a time ``dt`` (the step, or a substep of it): each dynamic
+    body's velocity gets the integrator's increment; its free-motion move is remembered for
+    :func:`plan_motion`. Kinematic bodies move at their own velocity; static bodies do not
+    move."""
+    ctx = context[0]
+    bodies, _, _, joints, generators = model
+    method, gravity = ctx["integrator"], ctx["gravity"]
     fields = has_fields(joints, generators)
     inc = np.zeros(bodies.shape[0] if fields or method > SEMI_IMPLICIT_EULER else 0, dtype=MOTION)
     if inc.shape[0] > 0:
@@ -300,8 +316,7 @@ def plan_motion(bodies, dt: float) -> None:
 
 @njit
 def move_bodies(bodies, rot, context) -> None:
-    """Apply each body's planned move and turn (orientation in the world's representation),
-    then clear the force accumulators for the next step."""
+    """Apply each body's planned move and turn (orientation in the world's representation)."""
     ctx = context[0]
     for i in range(bodies.shape[0]):
         b = bodies[i]
@@ -311,4 +326,3 @@ def move_bodies(bodies, rot, context) -> None:
                 b["delta_position"][k] += b["motion"][k]
             if b["motion_turn"] != 0.0 or ctx["renormalise"]:
                 turn_body(bodies, rot, i, ctx["orientation"], b["motion_turn"], ctx["renormalise"])
-        b["force"][0] = b["force"][1] = b["torque"] = 0.0

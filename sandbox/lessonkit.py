@@ -39,11 +39,15 @@ def save_figure(fig, path: str | os.PathLike, **savefig_kwargs) -> Path:
     """Save a lesson's matplotlib figure to ``path`` (PNG) and close it; returns the path.
 
     Every lesson figure goes through here, so that one place decides how a figure is shown
-    (a file for a script run) and checked.
+    (a file for a script run) and checked: with ``SANDBOX_CHECK_FIGURES`` set, a figure that
+    breaks the figure standard (:mod:`sandbox.figure_standard`) raises instead of being saved.
     """
     import matplotlib.pyplot as plt
 
+    from sandbox.figure_standard import enforce
+
     path = Path(path)
+    enforce(fig, path.name)
     fig.savefig(path, **savefig_kwargs)
     plt.close(fig)
     return path

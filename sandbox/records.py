@@ -86,21 +86,24 @@ VERTEX = np.dtype(
 
 CONTACT_POINT = np.dtype(
     [
-        ("point", V2),  # world point midway between the surfaces, at detection (m)
-        ("depth", F8),  # penetration at detection (m): > 0 overlapping, < 0 a gap
-        ("feature", I8),  # which features touch; stays the same while they do (warm starting)
+        # what the solver's sweeps read and write, together (a cache line and a bit)
         ("anchor_a", V2),  # r_a: from a's centre of mass to the point, world frame (m)
         ("anchor_b", V2),  # r_b, likewise
-        ("local_a", V2),  # the point in a's body frame, about its centre of mass (m)
-        ("local_b", V2),  # likewise in b's
         ("normal_mass", F8),  # 1 / k_n, k_n = 1/m_a + 1/m_b + (r_a x n)^2/I_a + (r_b x n)^2/I_b
         ("tangent_mass", F8),  # 1 / k_t, the same along the tangent t = (n_y, -n_x)
         ("bias", F8),  # the normal speed v_r . n the solver aims at (m/s)
-        ("approach_speed", F8),  # v_r . n when the step began, before gravity (m/s)
         ("normal_impulse", F8),  # accumulated this step (N s), warm-started from the last
         ("tangent_impulse", F8),  # friction impulse along t (N s)
         ("max_normal_impulse", F8),  # the largest normal impulse of the step (N s)
-        ("bounce_impulse", F8),  # what the restitution pass added (N s)
+        # what the narrowphase found, and what the passes before and after the sweeps use
+        ("point", V2),  # world point midway between the surfaces, at detection (m)
+        ("depth", F8),  # penetration at detection (m): > 0 overlapping, < 0 a gap
+        ("feature", I8),  # which features touch; stays the same while they do (warm starting)
+        ("local_a", V2),  # the point in a's body frame, about its centre of mass (m)
+        ("local_b", V2),  # likewise in b's
+        ("approach_speed", F8),  # v_r . n when the step began, before gravity (m/s)
+        ("base_separation", F8),  # soft step: -depth - (r_b - r_a) . n, for the separation now
+        ("bounce_impulse", F8),  # what the passes after the sweeps added (N s), not warm-started
     ],
     align=True,
 )
@@ -109,20 +112,20 @@ CONTACT = np.dtype(
     [
         ("a", I8),  # body a (the normal points from a to b)
         ("b", I8),
-        ("shape_a", I8),
-        ("shape_b", I8),
         ("count", I8),  # points used: 1 or 2
         ("normal", V2),  # unit normal from a to b
         ("friction", F8),  # mu: the product of the two shapes' values
-        ("restitution", F8),  # e: likewise
         ("inv_mass_a", F8),  # copied in the prepare stage (a frozen body in shock propagation)
         ("inv_moment_a", F8),
         ("inv_mass_b", F8),
         ("inv_moment_b", F8),
-        ("points", CONTACT_POINT, 2),
         ("use_block", np.bool_),  # two points solved together (block solver)
         ("k12", F8),  # off-diagonal of the 2x2 effective mass matrix K
         ("block_mass", F8, 3),  # K^-1 as (m11, m12, m22)
+        ("points", CONTACT_POINT, 2),
+        ("shape_a", I8),
+        ("shape_b", I8),
+        ("restitution", F8),  # e: the product of the two shapes' values
         ("rebound", F8),  # how much closer a bounce before touching leaves the pair (m)
         ("soft_bias_rate", F8),  # soft step: the spring's bias rate (1/s)
         ("soft_mass_scale", F8),  # soft step: scales the effective mass

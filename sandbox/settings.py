@@ -141,7 +141,12 @@ class Settings:
         4, "integer", "substeps per step of the soft solver (solver: soft)", Range(1, 64)
     )
     contact_hertz: float = _setting(
-        30.0, "number", "stiffness of soft contacts, as a frequency (solver: soft)", _HERTZ, gt=0.0
+        60.0,
+        "number",
+        "stiffness of soft contacts, as a frequency, at most a quarter of the substep rate "
+        "(solver: soft; contacts with a static body twice as stiff)",
+        _HERTZ,
+        gt=0.0,
     )
     contact_damping_ratio: float = _setting(
         10.0, "number", "damping ratio of soft contacts (solver: soft)", Range(0.0, 1e3), ge=0.0
@@ -150,7 +155,7 @@ class Settings:
         60.0, "number", "stiffness of soft joints, as a frequency (solver: soft)", _HERTZ, gt=0.0
     )
     joint_damping_ratio: float = _setting(
-        2.0, "number", "damping ratio of soft joints (solver: soft)", Range(0.0, 1e3), ge=0.0
+        5.0, "number", "damping ratio of soft joints (solver: soft)", Range(0.0, 1e3), ge=0.0
     )
     max_push_speed: float = _setting(
         3.0, "number", "fastest speed at which overlapping bodies are pushed apart", _SPEED, gt=0.0

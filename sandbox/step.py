@@ -37,9 +37,21 @@ import numpy as np
 
 from sandbox.broadphase.aabb import proxy_boxes, sort_pairs_into
 from sandbox.broadphase.sap import sweep
-from sandbox.integrators import integrate_velocities, move_bodies, plan_motion
+from sandbox.integrators import (
+    clear_forces,
+    gather_forces,
+    integrate_velocities,
+    move_bodies,
+    plan_motion,
+)
 from sandbox.jit import njit
-from sandbox.joints.solve import prepare_joints, warm_start_joints
+from sandbox.joints.solve import (
+    prepare_joints,
+    prepare_joints_soft,
+    solve_joints_soft,
+    warm_start_joints,
+    warm_start_joints_soft,
+)
 from sandbox.narrowphase import collide_into
 from sandbox.penetration import fix_positions
 from sandbox.records import DYNAMIC
@@ -51,6 +63,7 @@ from sandbox.solvers.common import (
     restitution,
     warm_start,
 )
+from sandbox.solvers.soft import prepare_soft, softness, solve_soft
 from sandbox.toi import limit_ccd_motion
 
 STAGES = (
@@ -157,8 +170,9 @@ def fast_step(
         k = collide_into(
             pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
         )
-        prepare(contacts, k, previous, bodies, context)
-    integrate_velocities(model, context)
+    prepare(contacts, k, previous, bodies, context)
+    gather_forces(bodies)
+    integrate_velocities(model, context, ctx["dt"])
     prepare_joints(joints, bodies, context)
     warm_start_all(contacts, k, joints, bodies, context)
     iterative.solve(contacts, k, joints, bodies, context)
@@ -167,6 +181,73 @@ def fast_step(
     move_bodies(bodies, rot, context)
     fix_positions(contacts, k, joints, bodies, rot, context)
     ctx["contact_points"] = count_points(contacts, k)
+    clear_forces(bodies)
+    return store_impulses(k, bodies, context)
+
+
+@njit
+def soft_substeps(contacts, k: int, model, rot, context, ccd: bool) -> None:
+    """The soft step's substeps (:mod:`sandbox.solvers.soft`; Box2D v3's ``b2SolverStep``):
+    each integrates the velocities over h = dt / substeps, warm starts, solves the joints and
+    contacts with the soft bias (the joints ``settings.iterations`` times), moves the bodies,
+    and relaxes (solves again without bias)."""
+    bodies, shapes, vertices, joints, _ = model
+    ctx = context[0]
+    h = ctx["dt"] / ctx["substeps"]
+    joint_soft = softness(ctx["joint_hertz"], ctx["joint_damping_ratio"], h)
+    for _ in range(ctx["substeps"]):
+        integrate_velocities(model, context, h)
+        warm_start_joints_soft(joints, bodies)
+        if ctx["warm_start"]:
+            warm_start(contacts, k, bodies)
+        for _ in range(ctx["iterations"]):  # joints are few and a chain's error travels
+            solve_joints_soft(joints, bodies, joint_soft, True, 1.0 / h)
+        solve_soft(contacts, k, bodies, context, True)
+        plan_motion(bodies, h)
+        if ccd:
+            limit_ccd_motion(bodies, shapes, vertices, context)
+        move_bodies(bodies, rot, context)
+        solve_joints_soft(joints, bodies, joint_soft, False, 1.0 / h)
+        solve_soft(contacts, k, bodies, context, False)
+
+
+@njit
+def begin_soft(contacts, k: int, previous, model, context) -> None:
+    """The soft step's prepare stages: contacts (with their softness and base separations)
+    and joints, once for the whole step; the bodies' moves are counted from here."""
+    bodies, joints = model[0], model[3]
+    for i in range(bodies.shape[0]):
+        bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
+    prepare(contacts, k, previous, bodies, context)
+    prepare_soft(contacts, k, bodies, context)
+    gather_forces(bodies)
+    prepare_joints_soft(joints, bodies, context)
+
+
+@njit
+def soft_step(
+    bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context
+) -> int:
+    """:func:`fast_step` for ``solver: soft``: the pairs and manifolds as always, then the
+    soft step's stages (:func:`begin_soft`, :func:`soft_substeps`), the position stage
+    (what the soft constraints let sink or stretch beyond the slop), restitution, store."""
+    ctx = context[0]
+    model = (bodies, shapes, vertices, joints, generators)
+    contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
+    k = 0
+    if shapes.shape[0] >= 2:
+        npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
+        if npairs < 0:
+            return npairs
+        k = collide_into(
+            pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
+        )
+    begin_soft(contacts, k, previous, model, context)
+    soft_substeps(contacts, k, model, rot, context, False)
+    fix_positions(contacts, k, joints, bodies, rot, context)
+    restitution(contacts, k, bodies, ctx["restitution_threshold"])
+    ctx["contact_points"] = count_points(contacts, k)
+    clear_forces(bodies)
     return store_impulses(k, bodies, context)
 
 
@@ -175,10 +256,12 @@ def free_step(bodies, rot, shapes, vertices, joints, generators, context) -> int
     """:func:`fast_step` for a world with fewer than two shapes and no joints (nothing can
     touch anything): the velocities, then the positions. Fewer arrays to hand over: this is
     the whole cost of stepping a single body."""
-    integrate_velocities((bodies, shapes, vertices, joints, generators), context)
+    gather_forces(bodies)
+    integrate_velocities((bodies, shapes, vertices, joints, generators), context, context[0]["dt"])
     plan_motion(bodies, context[0]["dt"])
     move_bodies(bodies, rot, context)
     context[0]["contact_points"] = 0
+    clear_forces(bodies)
     return store_impulses(0, bodies, context)
 
 
@@ -262,9 +345,12 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
             contacts,
         )
         clock.lap("collide")
-        prepare(contacts, k, previous, a.bodies, a.context)
-        clock.lap("prepare_contacts")
-    integrate_velocities(model, a.context)
+    if world.settings.solver == "soft":
+        return staged_soft(world, (contacts, k, previous), a, clock)
+    prepare(contacts, k, previous, a.bodies, a.context)
+    clock.lap("prepare_contacts")
+    gather_forces(a.bodies)
+    integrate_velocities(model, a.context, ctx["dt"])
     clock.lap("integrate_velocities")
     prepare_joints(a.joints, a.bodies, a.context)
     clock.lap("prepare_joints")
@@ -282,8 +368,30 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
     clock.lap("fix_positions")
     ctx["contact_points"] = count_points(contacts, k)
+    clear_forces(a.bodies)
     status = store_impulses(k, a.bodies, a.context)
     clock.lap("store_impulses")
     if timer is not None:
         timer.steps += 1
+    return status
+
+
+def staged_soft(world, found, a, clock) -> int:
+    """The rest of :func:`staged_step` for ``solver: soft`` (see :func:`soft_step`)."""
+    contacts, k, previous = found
+    ctx = a.context[0]
+    model = (a.bodies, a.shapes, a.vertices, a.joints, a.generators)
+    begin_soft(contacts, k, previous, model, a.context)
+    clock.lap("prepare_contacts")
+    soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd)
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
+    clock.lap("solve")
+    restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
+    clock.lap("restitution")
+    ctx["contact_points"] = count_points(contacts, k)
+    clear_forces(a.bodies)
+    status = store_impulses(k, a.bodies, a.context)
+    clock.lap("store_impulses")
+    if isinstance(clock, StageTimer):
+        clock.steps += 1
     return status

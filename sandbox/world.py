@@ -24,7 +24,7 @@ from sandbox.projectile import advance_analytic
 from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SPRING
 from sandbox.settings import Settings
 from sandbox.shape_records import Geometry, build_geometry
-from sandbox.step import fast_step, free_step, staged_step
+from sandbox.step import fast_step, free_step, soft_step, staged_step
 
 _EULERS = ("semi_implicit_euler", "explicit_euler")
 
@@ -311,7 +311,7 @@ class World:
         fields = len(self.generator_table) > 0 or bool(np.any(self.joint_table["kind"] == SPRING))
         self._fast = (
             s.broadphase == "sap"
-            and s.solver == "iterative"
+            and s.solver in ("iterative", "soft")
             and s.integrator in _EULERS
             and not fields
             and not self.has_ccd
@@ -360,11 +360,12 @@ class World:
             return
         fast = self._fast and self.timer is None
         model = (self.state, self.rot, g.table, g.vertices, self.joint_table, self.generator_table)
-        if fast and len(g) < 2 and not len(self.joint_table):
+        if fast and len(g) < 2 and not len(self.joint_table) and s.solver != "soft":
             self._run = _bind(entry(free_step, *model, self.context), *model, self.context)
         elif fast:
             args = (*model, b.sets, b.proxies, b.pairs, self.context)
-            self._run = _bind(entry(fast_step, *args), *args)
+            one_call = soft_step if s.solver == "soft" else fast_step
+            self._run = _bind(entry(one_call, *args), *args)
         else:
             self._run = lambda: staged_step(self, self.timer)
 

@@ -1,5 +1,10 @@
 """Every lesson runs as a notebook (jupytext -> ipynb, executed with a real kernel) and writes
-its figures. Two lessons run at a time (one kernel each)."""
+its figures. Two lessons run at a time (one kernel each).
+
+The kernels run with SANDBOX_CHECK_FIGURES set, so every figure a lesson saves through
+``sandbox.lessonkit.save_figure`` is checked against the figure standard
+(``sandbox.figure_standard``: title, labelled axes with units, legends, no legend over data)
+and a figure that breaks it fails its lesson here, with the list of problems."""
 
 import os
 from concurrent.futures import ThreadPoolExecutor
@@ -8,6 +13,8 @@ from pathlib import Path
 import jupytext
 import nbclient
 import pytest
+
+from sandbox import figure_standard
 
 ROOT = Path(__file__).resolve().parent.parent
 LESSONS = sorted((ROOT / "lessons").glob("[0-9][0-9]_*.py"))
@@ -36,6 +43,7 @@ def executed(tmp_path_factory):
     outputs = tmp_path_factory.mktemp("outputs")
     os.environ["SANDBOX_OUTPUTS"] = str(outputs)
     os.environ["MPLBACKEND"] = "Agg"
+    os.environ[figure_standard.ENV] = "1"  # save_figure raises on a figure that breaks it
     try:
         with ThreadPoolExecutor(max_workers=2) as pool:
             errors = dict(
@@ -43,6 +51,7 @@ def executed(tmp_path_factory):
             )
     finally:
         os.environ.pop("SANDBOX_OUTPUTS", None)
+        os.environ.pop(figure_standard.ENV, None)
     return outputs, errors
 
 

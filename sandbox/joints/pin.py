@@ -132,6 +132,56 @@ def solve_pin_position(j, bodies) -> float:
     return abs(error)
 
 
+# --- the soft step (sandbox.solvers.soft) ----------------------------------------------------
+@njit
+def rod_now(j, bodies):
+    """Arms r_a, r_b at the bodies' current poses, the unit vector from anchor a to anchor b
+    and its length, from the moves since the step began: d = (dc_b - dc_a) + (r_b - r_a) +
+    (c_b - c_a at the start)."""
+    a, b = bodies[j["a"]], bodies[j["b"]]
+    ra, rb = arm(a, j["local_a"]), arm(b, j["local_b"])
+    dx = b["delta_position"][0] - a["delta_position"][0] + rb[0] - ra[0] + j["delta_center"][0]
+    dy = b["delta_position"][1] - a["delta_position"][1] + rb[1] - ra[1] + j["delta_center"][1]
+    length = math.sqrt(dx * dx + dy * dy)
+    ux, uy = (dx / length, dy / length) if length > 1e-12 else (0.0, 0.0)
+    return ra, rb, (ux, uy), length
+
+
+@njit
+def warm_start_pin_soft(j, bodies) -> None:
+    """The accumulated impulse again, along the rod as it is now."""
+    ra, rb, u, _ = rod_now(j, bodies)
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    lam = j["impulse"][0]
+    va, vb = apply_joint_impulse(
+        va, vb, inverse_masses(j, bodies), ra, rb, lam * u[0], lam * u[1], 0.0
+    )
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
+@njit
+def solve_pin_soft(j, bodies, soft, use_bias: bool) -> None:
+    """The rod as a soft constraint: lambda = -mass_scale m_eff (u . Cdot + bias_rate C) -
+    impulse_scale lambda_total with C = |pb - pa| - L (``soft`` = (bias_rate, mass_scale,
+    impulse_scale), :func:`sandbox.solvers.soft.softness`); rigid without bias (relax)."""
+    ra, rb, u, length = rod_now(j, bodies)
+    bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
+    if use_bias:
+        bias = soft[0] * (length - j["length"])
+        mass_scale, impulse_scale = soft[1], soft[2]
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    rel = anchor_velocity(va, ra, vb, rb)
+    cdot = u[0] * rel[0] + u[1] * rel[1]
+    lam = -mass_scale * j["axial_mass"] * (cdot + bias) - impulse_scale * j["impulse"][0]
+    j["impulse"][0] += lam
+    va, vb = apply_joint_impulse(
+        va, vb, inverse_masses(j, bodies), ra, rb, lam * u[0], lam * u[1], 0.0
+    )
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
 class PinJoint(Joint):
     """Keep ``anchor_a`` on body ``a`` and ``anchor_b`` on ``b`` at their distance when attached.
 

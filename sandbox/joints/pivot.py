@@ -199,6 +199,89 @@ def solve_pivot_position(j, bodies) -> float:
     return max(math.hypot(cx, cy), angular_error)
 
 
+# --- the soft step (sandbox.solvers.soft) ----------------------------------------------------
+@njit
+def arms_now(j, bodies):
+    """Arms r_a, r_b at the bodies' current poses."""
+    return arm(bodies[j["a"]], j["local_a"]), arm(bodies[j["b"]], j["local_b"])
+
+
+@njit
+def warm_start_pivot_soft(j, bodies) -> None:
+    """The accumulated point and angular impulses again, at the arms as they are now."""
+    ra, rb = arms_now(j, bodies)
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    axial = j["motor_impulse"] + j["lower_impulse"] - j["upper_impulse"]
+    mass = inverse_masses(j, bodies)
+    va, vb = apply_joint_impulse(va, vb, mass, ra, rb, j["impulse"][0], j["impulse"][1], axial)
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
+@njit
+def soft_limit(axial_mass, c, cdot, total, soft, use_bias, inv_h) -> float:
+    """A one-sided angular limit C >= 0 as a soft constraint (speculative while C > 0);
+    returns the change of the accumulated impulse (which stays >= 0)."""
+    bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
+    if c > 0.0:
+        bias = c * inv_h
+    elif use_bias:
+        bias, mass_scale, impulse_scale = soft[0] * c, soft[1], soft[2]
+    lam = -axial_mass * mass_scale * (cdot + bias) - impulse_scale * total
+    return max(total + lam, 0.0) - total
+
+
+@njit
+def solve_pivot_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> None:
+    """Motor, limits and point as soft constraints (Box2D v3's revolute joint): the point's
+    error is C = (dc_b - dc_a) + (r_b - r_a) + (c_b - c_a at the start) = pb - pa."""
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    mass = inverse_masses(j, bodies)
+    axial_mass = j["axial_mass"]
+    if axial_mass > 0.0 and j["has_motor"]:
+        bound = j["max_torque"] * j["dt"]
+        old = j["motor_impulse"]
+        j["motor_impulse"] = min(
+            max(old - axial_mass * (vb[2] - va[2] - j["motor_rate"]), -bound), bound
+        )
+        va, vb = angular(va, vb, mass, j["motor_impulse"] - old)
+    if axial_mass > 0.0 and j["has_limits"]:
+        theta = relative_angle(j, bodies)
+        lam = soft_limit(
+            axial_mass, theta - j["lower"], vb[2] - va[2], j["lower_impulse"], soft, use_bias, inv_h
+        )
+        j["lower_impulse"] += lam
+        va, vb = angular(va, vb, mass, lam)
+        lam = soft_limit(
+            axial_mass, j["upper"] - theta, va[2] - vb[2], j["upper_impulse"], soft, use_bias, inv_h
+        )
+        j["upper_impulse"] += lam
+        va, vb = angular(va, vb, mass, -lam)
+    ra, rb = arms_now(j, bodies)
+    cx, cy = anchor_velocity(va, ra, vb, rb)
+    # arc correction: the anchors move on arcs R(w h) r, not along the tangents the velocity
+    # rows assume; aim at where they really go by the end of the substep
+    h = j["dt"]
+    ea, eb = arc_error(ra[0], ra[1], va[2] * h), arc_error(rb[0], rb[1], vb[2] * h)
+    cx, cy = cx - (ea[0] - eb[0]) / h, cy - (ea[1] - eb[1]) / h
+    bx = by = 0.0
+    mass_scale, impulse_scale = 1.0, 0.0
+    if use_bias:
+        a, b = bodies[j["a"]], bodies[j["b"]]
+        sx = b["delta_position"][0] - a["delta_position"][0] + rb[0] - ra[0] + j["delta_center"][0]
+        sy = b["delta_position"][1] - a["delta_position"][1] + rb[1] - ra[1] + j["delta_center"][1]
+        bx, by = soft[0] * sx, soft[0] * sy
+        mass_scale, impulse_scale = soft[1], soft[2]
+    ux, uy = solve2(point_matrix(mass, ra, rb), cx + bx, cy + by)
+    px = -mass_scale * ux - impulse_scale * j["impulse"][0]
+    py = -mass_scale * uy - impulse_scale * j["impulse"][1]
+    j["impulse"][0] += px
+    j["impulse"][1] += py
+    va, vb = apply_joint_impulse(va, vb, mass, ra, rb, px, py, 0.0)
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
 class PivotJoint(Joint):
     """Pin ``anchor_a`` of ``a`` to ``anchor_b`` of ``b`` (m, origin frames): a hinge.
 

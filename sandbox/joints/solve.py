@@ -15,12 +15,21 @@ Per step::
 from __future__ import annotations
 
 from sandbox.jit import njit
-from sandbox.joints.pin import prepare_pin, solve_pin_position, solve_pin_velocity, warm_start_pin
+from sandbox.joints.pin import (
+    prepare_pin,
+    solve_pin_position,
+    solve_pin_soft,
+    solve_pin_velocity,
+    warm_start_pin,
+    warm_start_pin_soft,
+)
 from sandbox.joints.pivot import (
     prepare_pivot,
     solve_pivot_position,
+    solve_pivot_soft,
     solve_pivot_velocity,
     warm_start_pivot,
+    warm_start_pivot_soft,
 )
 from sandbox.records import PIN, PIVOT
 
@@ -71,3 +80,44 @@ def solve_joint_positions(joints, bodies) -> float:
         elif j["kind"] == PIVOT:
             worst = max(worst, solve_pivot_position(j, bodies))
     return worst
+
+
+# --- the soft step (sandbox.solvers.soft): prepared once per step, then every substep ----------
+@njit
+def prepare_joints_soft(joints, bodies, context) -> None:
+    """:func:`prepare_joints` for a substep h = dt / substeps, and each joint's
+    c_b - c_a at the start of the step."""
+    ctx = context[0]
+    h = ctx["dt"] / ctx["substeps"]
+    for i in range(joints.shape[0]):
+        j = joints[i]
+        a, b = bodies[j["a"]], bodies[j["b"]]
+        j["delta_center"][0] = b["com"][0] - a["com"][0]
+        j["delta_center"][1] = b["com"][1] - a["com"][1]
+        if j["kind"] == PIN:
+            prepare_pin(j, bodies, h, ctx["warm_start"])
+        elif j["kind"] == PIVOT:
+            prepare_pivot(j, bodies, h, ctx["warm_start"])
+
+
+@njit
+def warm_start_joints_soft(joints, bodies) -> None:
+    """Every joint's accumulated impulses again, at the bodies' current poses."""
+    for i in range(joints.shape[0]):
+        j = joints[i]
+        if j["kind"] == PIN:
+            warm_start_pin_soft(j, bodies)
+        elif j["kind"] == PIVOT:
+            warm_start_pivot_soft(j, bodies)
+
+
+@njit
+def solve_joints_soft(joints, bodies, soft, use_bias: bool, inv_h: float) -> None:
+    """One soft pass over the joints (``soft`` = (bias_rate, mass_scale, impulse_scale));
+    rigid and without bias when ``use_bias`` is off (the relax pass)."""
+    for i in range(joints.shape[0]):
+        j = joints[i]
+        if j["kind"] == PIN:
+            solve_pin_soft(j, bodies, soft, use_bias)
+        elif j["kind"] == PIVOT:
+            solve_pivot_soft(j, bodies, soft, use_bias, inv_h)

@@ -1,0 +1,143 @@
+"""Soft step: substeps, soft contacts, a relax pass and restitution (Box2D v3's solver;
+Erin Catto, "Solver2D", 2024).
+
+A rigid constraint asks the velocities to remove the whole error at once; sequential impulses
+never quite converge, and the error they leave (a box sunk into the one below, a chain link
+stretched) must be fought again every step. A *soft* constraint behaves like a stiff damped
+spring instead: the error C pulls back with a stiffness set as a frequency f (Hz) and a damping
+ratio zeta, the mass-spring-damper m x'' + c x' + k x = 0 with k = m omega^2, c = 2 m zeta omega,
+omega = 2 pi f. Integrated implicitly over a substep h, the impulse that does that is
+
+    lambda = -m_eff (mass_scale (Cdot) + bias_rate mass_scale C) - impulse_scale lambda_total
+
+with (:func:`softness`)
+
+    bias_rate = omega / (2 zeta + h omega),   mass_scale = h omega (2 zeta + h omega) / (1 + h omega (2 zeta + h omega)),
+    impulse_scale = 1 / (1 + h omega (2 zeta + h omega)).
+
+Per step (``sandbox.step``): prepare the contacts and joints once (effective masses, the
+softness for this substep length, each point's separation at the start); then ``substeps``
+times: integrate the velocities over h, warm start (the accumulated impulses again), solve
+with the soft bias, integrate the positions, and *relax*: solve again without bias, so the
+velocities the next substep starts from carry no push-out speed; after the substeps, the
+restitution pass. Contacts with a static body are twice as stiff, as in Box2D (bodies are not
+pushed through the ground). Overlap is pushed out at most at ``max_push_speed`` (m/s).
+
+Why substeps beat iterations at equal cost: an iteration shares one velocity error out among
+the constraints; a substep also moves the bodies, so each constraint then sees its real,
+current error (the separation is recomputed from the bodies' moves), and the gravity a stack
+must carry arrives in small pieces.
+"""
+
+from __future__ import annotations
+
+import math
+
+from sandbox.jit import njit
+from sandbox.math2d import exchange, rotate, set_velocity, velocity_of
+from sandbox.records import DYNAMIC
+from sandbox.solvers.common import arms, masses, normal_speed
+
+STATIC_STIFFNESS = 2.0  # contacts with a body that cannot move are this many times stiffer
+
+
+@njit
+def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
+    """(bias_rate (1/s), mass_scale, impulse_scale) of a soft constraint of frequency
+    ``hertz`` and damping ratio ``zeta`` over a substep ``h`` (s); rigid (0, 1, 0) at 0 Hz."""
+    if hertz == 0.0:
+        return 0.0, 1.0, 0.0
+    omega = 2.0 * math.pi * hertz
+    a1 = 2.0 * zeta + h * omega
+    a2 = h * omega * a1
+    a3 = 1.0 / (1.0 + a2)
+    return omega / a1, a2 * a3, a3
+
+
+@njit
+def prepare_soft(contacts, k: int, bodies, context) -> None:
+    """The soft step's additions to :func:`sandbox.solvers.common.prepare_contacts`: each
+    point's base separation s0 - (r_b - r_a) . n, and each contact's softness (twice the
+    stiffness against a body that cannot move). No more than a quarter of the substep rate,
+    as in Box2D: a stiffer spring would be unstable at this h."""
+    ctx = context[0]
+    h = ctx["dt"] / ctx["substeps"]
+    hertz = min(ctx["contact_hertz"], 0.25 / h)
+    zeta = ctx["contact_damping_ratio"]
+    for i in range(k):
+        c = contacts[i]
+        fixed = bodies[c["a"]]["kind"] != DYNAMIC or bodies[c["b"]]["kind"] != DYNAMIC
+        rate, mass_scale, impulse_scale = softness(
+            STATIC_STIFFNESS * hertz if fixed else hertz, zeta, h
+        )
+        c["soft_bias_rate"], c["soft_mass_scale"] = rate, mass_scale
+        c["soft_impulse_scale"] = impulse_scale
+        nx, ny = c["normal"][0], c["normal"][1]
+        for j in range(c["count"]):
+            p = c["points"][j]
+            dx = p["anchor_b"][0] - p["anchor_a"][0]
+            dy = p["anchor_b"][1] - p["anchor_a"][1]
+            p["base_separation"] = -p["depth"] - (dx * nx + dy * ny)
+
+
+@njit
+def separation_now(c, p, bodies) -> float:
+    """The point's separation after the bodies' moves this step (m, < 0 overlapping):
+    s = s_base + ((dp_b - dp_a) + R_b l_b - R_a l_a) . n, the normal held fixed."""
+    a, b = bodies[c["a"]], bodies[c["b"]]
+    rax, ray = rotate(a["cs"][0], a["cs"][1], p["local_a"][0], p["local_a"][1])
+    rbx, rby = rotate(b["cs"][0], b["cs"][1], p["local_b"][0], p["local_b"][1])
+    dx = b["delta_position"][0] - a["delta_position"][0] + rbx - rax
+    dy = b["delta_position"][1] - a["delta_position"][1] + rby - ray
+    return p["base_separation"] + dx * c["normal"][0] + dy * c["normal"][1]
+
+
+@njit
+def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, max_push: float) -> None:
+    """One contact: the normal impulses (soft, or rigid without bias in the relax pass), then
+    friction within the cone of the current normal impulse (Box2D v3's order)."""
+    nx, ny = c["normal"][0], c["normal"][1]
+    mass = masses(c)
+    va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
+    for j in range(c["count"]):
+        p = c["points"][j]
+        s = separation_now(c, p, bodies)
+        bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
+        if s > 0.0:
+            bias = s * inv_h  # speculative: the gap may close within this substep
+        elif use_bias:
+            bias = max(c["soft_mass_scale"] * c["soft_bias_rate"] * s, -max_push)
+            mass_scale, impulse_scale = c["soft_mass_scale"], c["soft_impulse_scale"]
+        vn = normal_speed(va, vb, p, nx, ny)
+        old = p["normal_impulse"]
+        change = -p["normal_mass"] * (mass_scale * vn + bias) - impulse_scale * old
+        new = max(old + change, 0.0)
+        p["normal_impulse"] = new
+        p["max_normal_impulse"] = max(p["max_normal_impulse"], new)
+        ra, rb = arms(p)
+        va, vb = exchange(va, vb, mass, ra, rb, (new - old) * nx, (new - old) * ny)
+    for j in range(c["count"]):
+        p = c["points"][j]
+        old = p["tangent_impulse"]
+        limit = c["friction"] * p["normal_impulse"]
+        vt = normal_speed(va, vb, p, ny, -nx)
+        new = min(max(old - p["tangent_mass"] * vt, -limit), limit)
+        p["tangent_impulse"] = new
+        ra, rb = arms(p)
+        va, vb = exchange(va, vb, mass, ra, rb, (new - old) * ny, -(new - old) * nx)
+    set_velocity(bodies, c["a"], va)
+    set_velocity(bodies, c["b"], vb)
+
+
+@njit
+def solve_soft(contacts, k: int, bodies, context, use_bias: bool) -> None:
+    """One pass over the first ``k`` contacts: with the soft bias (solve) or without (relax)."""
+    ctx = context[0]
+    inv_h = ctx["substeps"] / ctx["dt"]
+    # contacts between moving bodies first, then those with a body that cannot move: the
+    # ground has the last word in each pass, so what rests on it is not pushed into it
+    for fixed in (False, True):
+        for i in range(k):
+            c = contacts[i]
+            if (c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0) == fixed:
+                solve_soft_contact(c, bodies, inv_h, use_bias, ctx["max_push_speed"])
