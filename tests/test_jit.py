@@ -1,6 +1,7 @@
 """The compiled-code cache is keyed by the kernel sources, so an edited kernel never runs stale."""
 
-from sandbox import jit
+from sandbox import compile_cache as jit
+from sandbox import jit as compiled
 
 
 def test_cache_key_changes_when_any_kernel_module_changes(tmp_path, monkeypatch):
@@ -18,7 +19,7 @@ def test_cache_key_changes_when_any_kernel_module_changes(tmp_path, monkeypatch)
 
 
 def test_numba_cache_lives_in_the_keyed_folder():
-    if not jit.JIT_ENABLED:
+    if not compiled.JIT_ENABLED:
         return
     import numba
 
@@ -117,7 +118,7 @@ def test_a_bad_scene_on_a_locked_down_machine_is_one_line_and_compiles_nothing(t
     assert compiled == []  # nothing was compiled (or cached) for a scene that was refused
 
 
-@pytest.mark.skipif(not jit.JIT_ENABLED, reason="numba switched off")
+@pytest.mark.skipif(not compiled.JIT_ENABLED, reason="numba switched off")
 def test_kernels_compile_and_cache_on_a_locked_down_machine(tmp_path):
     env = read_only_install(tmp_path)
     (tmp_path / "kernel.py").write_text(

@@ -1,4 +1,4 @@
-"""The command line: ``sandbox simulate | compare | lessons | scenes | schema`` (also
+"""The command line: ``sandbox simulate | compare | lessons | scenes | schema | warmup`` (also
 ``python -m sandbox``).
 
 One module per command (``sandbox/cli/<command>.py``, each with ``add_parser`` and ``run``);
@@ -17,11 +17,11 @@ from __future__ import annotations
 import argparse
 import sys
 
-from sandbox.cli import compare, lessons, scenes, schema, simulate
+from sandbox.cli import compare, lessons, scenes, schema, simulate, warmup
 from sandbox.cli.common import CliError, Parser, settle_matplotlib_config
 from sandbox.cli.exits import run_command
 
-COMMANDS = (simulate, compare, lessons, scenes, schema)
+COMMANDS = (simulate, compare, lessons, scenes, schema, warmup)
 
 EXAMPLES = """examples:
   sandbox simulate scenes/drop.json --steps 240 --gif drop.gif
@@ -29,6 +29,7 @@ EXAMPLES = """examples:
   sandbox lessons 01 07
   sandbox scenes --copy my_scenes/
   sandbox schema > scene.schema.json
+  sandbox warmup                       # compile the engine once, ahead of a class
 
 sandbox COMMAND --help shows each command's options and examples."""
 

@@ -224,7 +224,7 @@ def settle_matplotlib_config() -> None:
     temporary one (``MPLCONFIGDIR``) before it is imported, instead of its two warning lines."""
     if os.environ.get("MPLCONFIGDIR") or "matplotlib" in sys.modules:
         return
-    from sandbox.jit import private_temp_folder, writable_folder
+    from sandbox.compile_cache import private_temp_folder, writable_folder
 
     root = os.environ.get("XDG_CONFIG_HOME") or os.path.join(os.path.expanduser("~"), ".config")
     if writable_folder(Path(root) / "matplotlib"):
@@ -236,8 +236,8 @@ def settle_matplotlib_config() -> None:
 
 def cache_note() -> None:
     """Print the compile cache's note (where it fell back to), if any, once."""
-    from sandbox import jit
+    from sandbox.compile_cache import take_cache_note
 
-    text = jit.take_cache_note()
+    text = take_cache_note()
     if text:
         note(text)

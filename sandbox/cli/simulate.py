@@ -27,6 +27,7 @@ from sandbox.cli.common import (
     load_spec,
     shown,
 )
+from sandbox.cli.first_run import choose_engine_speed
 from sandbox.settings import CHOICES, Settings
 
 EXAMPLES = """examples:
@@ -169,7 +170,6 @@ def _pymunk_steps(scene, steps: int, dt: float):
 def run(args: argparse.Namespace) -> int:
     """Run the scene and write what was asked for, as one set of files."""
     from sandbox.atomic import output_set
-    from sandbox.build import build_world
 
     for option, path, suffix in (
         ("--trace", args.trace, ".csv"),
@@ -180,6 +180,10 @@ def run(args: argparse.Namespace) -> int:
     layers, panel = check_drawing(args)
     with input_phase():
         spec = load_spec(args.scene, args)
+        if args.engine == "sandbox":
+            choose_engine_speed(spec, args.steps)
+        from sandbox.build import build_world
+
         world = build_world(spec)
         scene = None
         if args.engine == "pymunk":
