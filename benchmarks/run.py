@@ -68,6 +68,7 @@ RATIOS = [(s, p) for p in PEER_NAMES for s in SANDBOX_NAMES]  # (this engine's c
 FIELDS = (
     ["benchmark", "bodies", "steps", "clock"]
     + [f"{n}_{c}_ms_per_step" for n in ALL_NAMES for c in CLOCKS]
+    + [f"{n}_first_step_{c}_ms" for n in ALL_NAMES for c in CLOCKS]
     + [f"{s}_per_{p}" for s, p in RATIOS]
     + [f"{n}_mean_y" for n in ALL_NAMES]
     + ["value", "unit", "status"]
@@ -121,10 +122,13 @@ def warm_up() -> None:
 
 @dataclass
 class Timing:
-    """Seconds per step of one engine on both clocks, and its mean height at the end (m)."""
+    """Seconds per step of one engine on both clocks, its first step's (s), and its mean height
+    at the end (m)."""
 
     cpu: float
     wall: float
+    first_cpu: float
+    first_wall: float
     mean_y: float
 
 
@@ -138,10 +142,13 @@ def time_steps(spec: dict, steps: int, engines: list[Engine]) -> dict[str, Timin
     """Every engine stepped ``steps`` times from the initial state of ``spec``: seconds per step
     and the mean height of the dynamic bodies at the end (m: a check that all did the same).
 
-    The engines take turns of ``BLOCK`` steps; the engine that starts a turn rotates, so none
-    always follows the same one (whose memory traffic it would inherit). Each turn also times an
-    empty block; its time (reading the CPU clock is a system call of about 2 us here, as long as
-    ten of pymunk's free-flight steps) is taken off every engine's.
+    Each engine's first step is timed on its own and kept apart: this engine sets up its
+    arrays there (about 1 ms for one body, 8 ms for 210 boxes), a cost of building the world, not
+    of stepping it. The other ``steps - 1`` are timed in turns of ``BLOCK`` steps; the engine that
+    starts a turn rotates, so none always follows the same one (whose memory traffic it would
+    inherit). Each turn also times an empty block; its time (reading the CPU clock is a system
+    call of about 1-2 us here, as long as a few of pymunk's free-flight steps) is taken off every
+    engine's.
     """
     spec = validate_scene(spec)
     steppers = {e.name: e.build(spec) for e in engines}
@@ -150,8 +157,14 @@ def time_steps(spec: dict, steps: int, engines: list[Engine]) -> dict[str, Timin
     names = list(runs)
     cpu = dict.fromkeys(names, 0.0)
     wall = dict.fromkeys(names, 0.0)
-    done = turn = 0
+    first = {}
     gc.collect()
+    for name in names:
+        wall_0, cpu_0 = time.perf_counter(), time.thread_time()
+        runs[name](1)
+        cpu_1, wall_1 = time.thread_time(), time.perf_counter()
+        first[name] = (cpu_1 - cpu_0, wall_1 - wall_0)
+    done, turn = 1, 0
     while done < steps:
         n = min(BLOCK, steps - done)
         k = turn % len(names)
@@ -165,9 +178,14 @@ def time_steps(spec: dict, steps: int, engines: list[Engine]) -> dict[str, Timin
         done += n
         turn += 1
     dynamic = [i for i, b in enumerate(spec["bodies"]) if b["type"] == "dynamic"]
+    timed = max(1, steps - 1)
     return {
         name: Timing(
-            (cpu[name] - cpu[""]) / steps, (wall[name] - wall[""]) / steps, stepper.mean_y(dynamic)
+            cpu=(cpu[name] - cpu[""]) / timed,
+            wall=(wall[name] - wall[""]) / timed,
+            first_cpu=first[name][0] - first[""][0],
+            first_wall=first[name][1] - first[""][1],
+            mean_y=stepper.mean_y(dynamic),
         )
         for name, stepper in steppers.items()
     }
@@ -187,6 +205,8 @@ def bench_case(case: Case, quick: bool, clock: str) -> dict:
     for name, t in timings.items():
         values[f"{name}_cpu_ms_per_step"] = f"{1e3 * t.cpu:.4g}"
         values[f"{name}_wall_ms_per_step"] = f"{1e3 * t.wall:.4g}"
+        values[f"{name}_first_step_cpu_ms"] = f"{1e3 * t.first_cpu:.4g}"
+        values[f"{name}_first_step_wall_ms"] = f"{1e3 * t.first_wall:.4g}"
         values[f"{name}_mean_y"] = f"{t.mean_y:.3f}"
     for mine, peer in RATIOS:
         if mine in timings and peer in timings:
@@ -232,28 +252,35 @@ def bench_lessons() -> list[dict]:
 # ---------------------------------------------------------------- output
 
 
+def _joined(r: dict, names: list[str], key: str) -> str:
+    """One cell holding every engine's ``{name}_{key}`` value, ``-`` where it did not run."""
+    if not any(r[f"{n}_{key}"] for n in names):
+        return ""
+    return " / ".join(r[f"{n}_{key}"] or "-" for n in names)
+
+
 def format_table(rows: list[dict], clock: str) -> str:
     """A Markdown table of the results: ms per step on ``clock`` for every engine that ran, the
-    ratios of this engine's columns to each peer, and every engine's mean height at the end."""
+    ratios of this engine's columns to each peer, every engine's mean height at the end, and
+    every engine's first step (ms, kept out of the time per step)."""
     names = [e.name for e in ENGINES]
     ratios = [(m, p) for m, p in RATIOS if m in names and p in names]
     head = (
         ["benchmark", "bodies", "steps"]
         + [f"{n} ms/step" for n in names]
         + [f"{m} / {p}" for m, p in ratios]
-        + [f"mean y at end (m): {' / '.join(names)}", "other"]
+        + [f"mean y at end (m): {' / '.join(names)}", "first step (ms)", "other"]
     )
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         other = f"{r['value']} {r['unit']}".strip()
         if r["status"] != "ok":
             other = f"{other} ({r['status']})".strip()
-        heights = [r[f"{n}_mean_y"] or "-" for n in names]
         cells = (
             [r["benchmark"], r["bodies"], r["steps"]]
             + [r[f"{n}_{clock}_ms_per_step"] for n in names]
             + [r[f"{m}_per_{p}"] for m, p in ratios]
-            + [" / ".join(heights) if any(r[f"{n}_mean_y"] for n in names) else "", other]
+            + [_joined(r, names, "mean_y"), _joined(r, names, f"first_step_{clock}_ms"), other]
         )
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")
     return "\n".join(lines)
