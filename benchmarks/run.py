@@ -34,6 +34,7 @@ import argparse
 import csv
 import gc
 import io
+import os
 import platform
 import re
 import subprocess
@@ -378,6 +379,8 @@ def main(argv: list[str] | None = None) -> int:
     unknown = [name for name in args.only or [] if name not in known]
     if unknown:
         parser.error(f"--only: unknown benchmark {', '.join(unknown)} (one of {', '.join(known)})")
+    if os.environ.get("SANDBOX_JIT") == "0":
+        print("SANDBOX_JIT=0: this engine runs uncompiled (plain Python) in this benchmark")
     if BOX2D_MISSING:
         print(f"Box2D skipped: {BOX2D_MISSING} (pip install -e '.[bench]' adds the box2d package)")
     cases = [c for c in CASES if not args.only or c.name in args.only]
