@@ -344,11 +344,12 @@ def update_readme(path: Path, table: str, title: str) -> None:
 
 
 def make_title(mode: str, clock: str) -> str:
-    """What ran (``mode``: full, quick, partial) where, and what the table's times are."""
+    """What ran (``mode``: "full run", "quick run (--only)", ...) where, and what the table's
+    times are."""
     box2d = f"Box2D {BOX2D_VERSION}" if BOX2D_VERSION else "Box2D not installed"
     positions = " (Box2D also 3 position iterations)" if BOX2D_VERSION else ""
     return (
-        f"{time.strftime('%Y-%m-%d')}, {mode} run: "
+        f"{time.strftime('%Y-%m-%d')}, {mode}: "
         f"Python {platform.python_version()}, pymunk {pymunk.version}, {box2d}, "
         f"{platform.machine()}; dt = 1/60 s, 10 velocity iterations{positions}, "
         f"soft: {SOFT_SUBSTEPS} substeps; times: {CLOCKS[clock]}"
@@ -401,8 +402,8 @@ def main(argv: list[str] | None = None) -> int:
         if not args.quick:
             rows.extend(bench_lessons())
 
-    mode = "quick" if args.quick else "full"
-    title = make_title(f"{mode}, partial" if args.only else mode, args.clock)
+    mode = f"{'quick' if args.quick else 'full'} run{' (--only)' if args.only else ''}"
+    title = make_title(mode, args.clock)
     table = format_table(rows, args.clock)
     print()
     print(title)
