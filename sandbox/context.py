@@ -39,9 +39,13 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     ctx["warm_start"] = s.warm_start and s.accumulate_impulses and s.solver in KEEPS_IMPULSES
     ctx["position_correction"] = s.position_correction
     ctx["penetration"] = PENETRATIONS.index(s.penetration)
+    ctx["robust_positions"] = s.robust_positions
     ctx["slop"], ctx["baumgarte"] = s.slop, s.baumgarte
     ctx["restitution_threshold"] = s.restitution_threshold
-    ctx["contact_margin"] = s.contact_margin
+    # at least as far as gravity moves a body from rest in one step (|g| dt^2), so a resting
+    # stack keeps its contacts even at a large dt
+    ctx["contact_margin"] = max(s.contact_margin, float(np.hypot(*gravity)) * dt * dt)
+    ctx["touch_margin"] = s.contact_margin
     for key, default in SOFT_DEFAULTS:
         ctx[key] = getattr(s, key, default)
     ctx["diverged"] = -1

@@ -27,10 +27,13 @@ by that total at the end (:func:`sandbox.orientation.turn_bodies`).
 
 from __future__ import annotations
 
+import numpy as np
+
 from sandbox.jit import njit
 from sandbox.joints.solve import solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies
+from sandbox.solvers.shock import contact_layers
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
 METHODS = ("half", "mass_weighted", "impulse")  # settings.penetration, in code order
@@ -49,18 +52,71 @@ def separation(c, p, bodies) -> tuple[float, float, float, float, float]:
 
 
 @njit
-def push_apart(contacts, k: int, bodies, weighted: bool, slop: float) -> float:
-    """Options 1 and 2, one pass: translate each pair apart by p = deepest overlap - slop.
-    Returns the smallest separation seen (m)."""
-    worst = 0.0
+def position_order(contacts, k: int, bodies, layered: bool, gap: float):
+    """The order the passes visit the contacts, and each body's layer.
+
+    Layered (``settings.robust_positions``, shock propagation on positions): bodies are sorted
+    into layers from the fixed ones up (:func:`sandbox.solvers.shock.contact_layers`) and the
+    contacts visited from the ground up; in a contact between two layers only the upper body
+    moves (layers over the contacts closer than ``gap``, m: the contact margin without what a
+    large dt adds to it). A stack's overlap then goes up and out in one pass, whatever the masses: nothing
+    pushes a light box down under a heavy one, or a box into the ground. Otherwise every body
+    is in one layer and the contacts are visited in the velocity sweeps' order
+    (:func:`sandbox.solvers.iterative.visit`)."""
+    if not layered:
+        half = (k + 1) // 2
+        order = np.empty(k, dtype=np.int64)
+        for q in range(k):
+            order[q] = (q >> 1) + (q & 1) * half
+        return order, np.zeros(bodies.shape[0], dtype=np.int64)
+    layer = contact_layers(contacts, k, bodies, gap)
+    key = np.empty(k, dtype=np.int64)
     for i in range(k):
-        c = contacts[i]
+        la, lb = layer[contacts[i]["a"]], layer[contacts[i]["b"]]
+        key[i] = 2 * max(la, lb) + (la == lb)  # (0, 1), then (1, 1), then (1, 2), ...
+    return np.argsort(key, kind="mergesort"), layer
+
+
+@njit
+def position_masses(c, bodies, layer) -> tuple[float, float, float, float]:
+    """(1/m_a, 1/I_a, 1/m_b, 1/I_b) for the position passes: the lower body of two layers is
+    held (infinite mass)."""
+    a, b = bodies[c["a"]], bodies[c["b"]]
+    im_a, ii_a, im_b, ii_b = a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"]
+    if layer[c["a"]] < layer[c["b"]]:
+        im_a = ii_a = 0.0
+    elif layer[c["b"]] < layer[c["a"]]:
+        im_b = ii_b = 0.0
+    return im_a, ii_a, im_b, ii_b
+
+
+@njit
+def allowed_separation(p, slop: float, push: float) -> float:
+    """The separation a point is pushed out to this step (m): -slop, except that an overlap
+    already there when the step began comes out by at most ``push`` (m, ``max_push_speed``
+    times dt), so bodies spawned inside one another separate at a bounded speed instead of
+    being fired apart (and through the ground). What the step's own motion pushed in is taken
+    out entirely. ``push`` is infinite unless ``settings.robust_positions`` is on."""
+    return min(-slop, -p["depth"] + push)
+
+
+@njit
+def push_apart(contacts, k: int, bodies, weighted: bool, bounds, layering) -> float:
+    """Options 1 and 2, one pass: translate each pair apart by p = deepest overlap beyond the
+    allowed separation. ``bounds`` = (slop, push) (m); ``layering`` = (order, layer) from
+    :func:`position_order`. Returns the smallest separation seen (m)."""
+    slop, push = bounds
+    order, layer = layering
+    worst = 0.0
+    for q in range(k):
+        c = contacts[order[q]]
         deepest = 0.0
         for j in range(c["count"]):
-            sep = separation(c, c["points"][j], bodies)[0]
+            p = c["points"][j]
+            sep = separation(c, p, bodies)[0]
             worst = min(worst, sep)
-            deepest = max(deepest, -sep - slop)
-        im_a, im_b = bodies[c["a"]]["inv_mass"], bodies[c["b"]]["inv_mass"]
+            deepest = max(deepest, allowed_separation(p, slop, push) - sep)
+        im_a, _, im_b, _ = position_masses(c, bodies, layer)
         if deepest <= 0.0 or im_a + im_b == 0.0:
             continue
         if weighted:  # option 2: m2 / (m1 + m2) = (1/m1) / (1/m1 + 1/m2)
@@ -76,40 +132,86 @@ def push_apart(contacts, k: int, bodies, weighted: bool, slop: float) -> float:
 
 
 @njit
-def position_impulses(contacts, k: int, bodies, beta: float, slop: float):
-    """Option 3, one pass (non-linear Gauss-Seidel), in the velocity sweeps' order
-    (:func:`sandbox.solvers.iterative.visit`). Returns (smallest separation seen (m), whether
-    anything moved)."""
+def push_points(c, bodies, mass, errors, arms) -> None:
+    """Position impulses lambda >= 0 at a manifold's points making each point's separation
+    change by -error (linearised): K lambda = -error with K_ij = 1/m_a + 1/m_b +
+    (r_ai x n)(r_aj x n) / I_a + (r_bi x n)(r_bj x n) / I_b, both points together when both
+    push (a box flat on another rises without turning), else the point with the larger error
+    alone."""
+    im_a, ii_a, im_b, ii_b = mass
+    nx, ny = c["normal"][0], c["normal"][1]
+    rn_a = (cross(arms[0], arms[1], nx, ny), cross(arms[4], arms[5], nx, ny))
+    rn_b = (cross(arms[2], arms[3], nx, ny), cross(arms[6], arms[7], nx, ny))
+    k11 = effective_mass(im_a, ii_a, im_b, ii_b, rn_a[0], rn_b[0])
+    l1 = l2 = 0.0
+    if c["count"] == 2:
+        k22 = effective_mass(im_a, ii_a, im_b, ii_b, rn_a[1], rn_b[1])
+        k12 = im_a + im_b + ii_a * rn_a[0] * rn_a[1] + ii_b * rn_b[0] * rn_b[1]
+        det = k11 * k22 - k12 * k12
+        if det > 1e-12 * k11 * k22:
+            l1 = -(k22 * errors[0] - k12 * errors[1]) / det
+            l2 = -(k11 * errors[1] - k12 * errors[0]) / det
+        if not (l1 >= 0.0 and l2 >= 0.0):  # not both: the deeper point alone
+            l1 = l2 = 0.0
+            if errors[1] < errors[0]:
+                l2 = -errors[1] / k22 if k22 > 0.0 else 0.0
+            else:
+                l1 = -errors[0] / k11 if k11 > 0.0 else 0.0
+    elif k11 > 0.0:
+        l1 = -errors[0] / k11
+    lam = l1 + l2
+    a, b = bodies[c["a"]], bodies[c["b"]]
+    turn_a, turn_b = rn_a[0] * l1 + rn_a[1] * l2, rn_b[0] * l1 + rn_b[1] * l2
+    nudge(a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * turn_a)
+    nudge(b, im_b * lam * nx, im_b * lam * ny, ii_b * turn_b)
+
+
+@njit
+def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
+    """Option 3, one pass (non-linear Gauss-Seidel). Within a layer, point by point, beta of
+    each point's error, at most ``MAX_CORRECTION``; between two layers (the lower body held)
+    the manifold's points together and entirely (nothing pushes back: :func:`push_points`).
+    Returns (smallest separation seen (m), whether anything moved)."""
+    slop, push = bounds
+    order, layer = layering
     worst = 0.0
     moved = False
-    half = (k + 1) // 2
     for q in range(k):
-        c = contacts[(q >> 1) + (q & 1) * half]
+        c = contacts[order[q]]
         a, b = bodies[c["a"]], bodies[c["b"]]
         nx, ny = c["normal"][0], c["normal"][1]
+        mass = position_masses(c, bodies, layer)
+        im_a, ii_a, im_b, ii_b = mass
+        if layer[c["a"]] != layer[c["b"]]:
+            e = [0.0, 0.0]
+            arms = [0.0] * 8
+            for j in range(c["count"]):
+                p = c["points"][j]
+                sep, arms[4 * j], arms[4 * j + 1], arms[4 * j + 2], arms[4 * j + 3] = separation(
+                    c, p, bodies
+                )
+                worst = min(worst, sep)
+                e[j] = min(sep - allowed_separation(p, slop, push), 0.0)
+            if e[0] < 0.0 or e[1] < 0.0:
+                push_points(c, bodies, mass, (e[0], e[1]), arms)
+                moved = True
+            continue
         for j in range(c["count"]):
-            sep, rax, ray, rbx, rby = separation(c, c["points"][j], bodies)
+            p = c["points"][j]
+            sep, rax, ray, rbx, rby = separation(c, p, bodies)
             worst = min(worst, sep)
-            error = min(max(beta * (sep + slop), -MAX_CORRECTION), 0.0)
+            gap = sep - allowed_separation(p, slop, push)
+            error = min(max(beta * gap, -MAX_CORRECTION), 0.0)
             if error == 0.0:
                 continue  # within the slop: nothing to push
             rn_a, rn_b = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
-            k_n = effective_mass(
-                a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"], rn_a, rn_b
-            )
+            k_n = effective_mass(im_a, ii_a, im_b, ii_b, rn_a, rn_b)
             if k_n <= 0.0:
                 continue
             lam = -error / k_n  # slides, "Collision Equation" step 1, on positions
             moved = True
-            nudge(
-                a,
-                -a["inv_mass"] * lam * nx,
-                -a["inv_mass"] * lam * ny,
-                -a["inv_moment"] * rn_a * lam,
-            )
-            nudge(
-                b, b["inv_mass"] * lam * nx, b["inv_mass"] * lam * ny, b["inv_moment"] * rn_b * lam
-            )
+            nudge(a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * rn_a * lam)
+            nudge(b, im_b * lam * nx, im_b * lam * ny, ii_b * rn_b * lam)
     return worst, moved
 
 
@@ -147,11 +249,17 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     for i in range(bodies.shape[0]):
         bodies[i]["turn"] = 0.0
     slop, method = ctx["slop"], ctx["penetration"]
+    robust = ctx["robust_positions"]
+    bounds = (slop, ctx["max_push_speed"] * ctx["dt"] if robust else np.inf)
+    layering = position_order(contacts, k, bodies, robust, ctx["touch_margin"])
     for _ in range(ctx["position_iterations"]):
         if method == IMPULSE:
-            worst, moved = position_impulses(contacts, k, bodies, ctx["baumgarte"], slop)
+            worst, moved = position_impulses(
+                contacts, k, bodies, ctx["baumgarte"], bounds, layering
+            )
         else:
-            worst, moved = push_apart(contacts, k, bodies, method == MASS_WEIGHTED, slop), True
+            weighted = method == MASS_WEIGHTED
+            worst, moved = push_apart(contacts, k, bodies, weighted, bounds, layering), True
         if joints.shape[0] == 0:
             if not moved:
                 break  # nothing moved: another pass would see the very same separations

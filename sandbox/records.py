@@ -236,10 +236,12 @@ CONTEXT = np.dtype(
         ("accumulate", np.bool_),
         ("position_correction", np.bool_),
         ("penetration", I8),  # index into sandbox.settings.PENETRATIONS
+        ("robust_positions", np.bool_),  # position passes from the ground up (shock order)
         ("slop", F8),
         ("baumgarte", F8),
         ("restitution_threshold", F8),
-        ("contact_margin", F8),
+        ("contact_margin", F8),  # the setting, or |g| dt^2 when larger (m)
+        ("touch_margin", F8),  # the setting: closer than this counts as touching (m)
         ("contact_hertz", F8),
         ("contact_damping_ratio", F8),
         ("joint_hertz", F8),

@@ -99,6 +99,13 @@ class Settings:
         "how remaining overlap is removed: half each, mass-weighted, or by position impulses",
         choices=PENETRATIONS,
     )
+    robust_positions: bool = _setting(
+        False,
+        "boolean",
+        "position passes from the ground up, the lower body of two layers held, and overlap "
+        "present at the start of a step pushed out at most at max_push_speed: overlapping "
+        "spawns and heavy-on-light stacks hold (off: the classic pass the lessons show)",
+    )
     renormalise: bool = _setting(
         True, "boolean", "renormalise matrix and complex orientations every step"
     )

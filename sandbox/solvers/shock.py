@@ -34,17 +34,31 @@ LAYER_SWEEPS = 3  # sweeps over each layer's contacts in the shock pass
 
 
 @njit
-def contact_layers(contacts, k: int, bodies):
-    """Breadth-first depth of every body from the fixed ones over the contact graph."""
+def touching(c, gap: float) -> bool:
+    """Whether a contact's points came closer than ``gap`` (m) at detection."""
+    deepest = c["points"][0]["depth"]
+    if c["count"] == 2:
+        deepest = max(deepest, c["points"][1]["depth"])
+    return deepest >= -gap
+
+
+@njit
+def contact_layers(contacts, k: int, bodies, gap: float = np.inf):
+    """Breadth-first depth of every body from the fixed ones over the contact graph (over the
+    contacts whose shapes came closer than ``gap`` (m): a speculative contact across a wide
+    gap does not hold anything up)."""
     n = bodies.shape[0]
     degree = np.zeros(n + 1, dtype=np.int64)
     for i in range(k):
-        degree[contacts[i]["a"] + 1] += 1
-        degree[contacts[i]["b"] + 1] += 1
+        if touching(contacts[i], gap):
+            degree[contacts[i]["a"] + 1] += 1
+            degree[contacts[i]["b"] + 1] += 1
     start = np.cumsum(degree)  # neighbours of body u: neighbour[start[u]:start[u + 1]]
     fill = start[:-1].copy()
-    neighbour = np.empty(2 * k, dtype=np.int64)
+    neighbour = np.empty(start[n], dtype=np.int64)
     for i in range(k):
+        if not touching(contacts[i], gap):
+            continue
         a, b = contacts[i]["a"], contacts[i]["b"]
         neighbour[fill[a]] = b
         fill[a] += 1
