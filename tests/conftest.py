@@ -10,3 +10,6 @@ settings.load_profile("sandbox")
 
 # a command run by a test never starts a background compile of the engine (sandbox.cli.first_run)
 os.environ.setdefault("SANDBOX_WARMUP", "off")
+# ... and runs compiled, as the tests in this process do, whether or not the compile cache was
+# marked warm (tests/test_first_run.py takes this away to test the first run)
+os.environ.setdefault("SANDBOX_JIT", "1")
