@@ -31,19 +31,46 @@ def test_softness_is_the_implicit_mass_spring_damper():
     assert softness(0.0, zeta, h) == (0.0, 1.0, 0.0)
 
 
-def test_pyramid_of_base_40_holds():
-    # 820 boxes for 10 s: the top box drops less than 1 cm and no box turns more than 1 degree
-    # (the issue's bounds; iterative: 13 cm, pymunk 18.9 cm)
+def pyramid_run(seconds: float = 10.0, **settings) -> dict:
+    """The pyramid of base 40 (820 boxes) under the soft step: the top box's drop at every
+    step (m), how far it moved sideways (m) and the largest turn of any box (deg)."""
     spec = validate_scene(scenes.pyramid(40))
-    spec["settings"]["solver"] = "soft"
+    spec["settings"].update(solver="soft", **settings)
     world = build_world(spec)
     top = max(world.bodies, key=lambda b: b.position[1])
-    y0 = top.position[1]
-    for _ in range(600):
+    (x0, y0), drops = top.position, []
+    for _ in range(round(seconds / spec["dt"])):
         world.step()
-    assert y0 - top.position[1] < 0.01
+        drops.append(y0 - top.position[1])
     turned = max(abs(b.angle) for b in world.bodies if b.type == "dynamic")
-    assert math.degrees(turned) < 1.0
+    return {"drop": np.array(drops), "sideways": top.position[0] - x0,
+            "turned": math.degrees(turned)}  # fmt: skip
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the issue's bound is not met at the defaults: at 4 substeps the contacts sit at the "
+    "60 Hz cap and the pyramid rings (top drop -15..69 mm over the last 5 s, 1.3 m sideways); "
+    "the soft step lesson, section 6",
+)
+def test_pyramid_of_base_40_holds_at_the_defaults():
+    # the issue's bounds, at every step of the last 5 s (not only the last one)
+    run = pyramid_run()
+    assert np.abs(run["drop"][300:]).max() < 0.01
+    assert run["turned"] < 1.0
+
+
+def test_pyramid_of_base_40_rests_with_8_substeps():
+    # 8 substeps put 60 Hz at half the cap: the pyramid is at rest within a second. Over the
+    # last 5 s the top box stays within 1 mm of where it is, 35 mm down at most (measured
+    # 30.2 mm: the static errors of 40 rows of soft contacts added up; iterative 130 mm,
+    # pymunk 189 mm), within 5 cm of where it started sideways, and no box turns 1 degree
+    run = pyramid_run(substeps=8)
+    late = run["drop"][300:]
+    assert late.max() - late.min() < 0.001
+    assert late.max() < 0.035
+    assert abs(run["sideways"]) < 0.05
+    assert run["turned"] < 1.0
 
 
 def chain(links: int = 20, ball: float = 0.0, **settings) -> World:
