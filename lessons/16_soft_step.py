@@ -215,10 +215,12 @@ def plain_log(axis, which: str = "xy") -> None:
 # step. Each visit fixes one constraint *given the others*: the impulse that stops box 3 from
 # sinking into box 2 pushes box 2 down, and only the next sweep's visit to the contact between
 # boxes 2 and 1 passes that on. A correction travels about **one constraint per sweep**. For a
-# column of $n$ contacts, Gauss-Seidel sweeps shrink the slowest part of the error by only
-# $\rho = \cos^2\!\frac{\pi}{n+1} \approx 1 - \frac{\pi^2}{n^2}$ per sweep (the classical rate of
-# Gauss-Seidel on the column's tridiagonal effective-mass matrix): 10 sweeps on 40 rows leave
-# $\rho^{10} = 94\%$ of it. Warm starting (last step's impulses) is a head start, but what the
+# column of $n$ equal boxes on the ground, the contacts' effective-mass matrix
+# $A = J M^{-1} J^T$ is tridiagonal ($1/m$ for the ground contact, $2/m$ for the others, $-1/m$
+# between neighbours), and Gauss-Seidel sweeps shrink the slowest part of the error by only
+# $\rho = \cos^2\frac{\pi}{2n} \approx 1 - \frac{\pi^2}{4n^2}$ per sweep (the largest
+# eigenvalue of the sweep's iteration matrix, computed below): 10 sweeps on a column of 40
+# leave $\rho^{10}$ = 98.5% of it. Warm starting (last step's impulses) is a head start, but what the
 # sweeps leave undone each step is a **velocity error**: the boxes move into each other, the
 # links apart. The position pass (lesson 08) pushes back what exceeds the slop, and the next
 # step the sweeps must fight the same error again, with the same too-few sweeps. The result is
@@ -229,6 +231,14 @@ def plain_log(axis, which: str = "xy") -> None:
 # link stretch of chains of growing length released horizontally (5 s suffice: the worst
 # stretch comes in the first swing), under the iterative and the soft solver. The runs of the
 # pyramid of base 40 come back in section 5.
+
+# %%
+for n in (10, 40):  # Gauss-Seidel on a column of n boxes: A = L + U, a sweep is x <- -L^-1 U x
+    A = 2.0 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)
+    A[0, 0] = 1.0  # the ground contact moves one box only (units of 1/m)
+    rho = max(abs(np.linalg.eigvals(-np.linalg.solve(np.tril(A), np.triu(A, 1)))))
+    print(f"column of {n}: rho = {rho:.6f} (cos^2(pi/2n) = {math.cos(math.pi / (2 * n)) ** 2:.6f}),"
+          f" left after 10 sweeps: {rho**10:.1%}")  # fmt: skip
 
 # %%
 HEIGHTS = (5, 10, 20, BASE)  # pyramid bases
@@ -479,14 +489,13 @@ def static_error(light: float, heavy: float, hertz: float) -> tuple[float, float
 
 HANGING = [(1.0, 1.0, {}), (1.0, 100.0, {}), (1.0, 400.0, {}), (1.0, 400.0, {"substeps": 8}),
            (1.0, 400.0, {"joint_hertz": 30.0}), (1.0, 400.0, {"joint_damping_ratio": 1.0})]  # fmt: skip
-rows, hang_errors = [], {}
+rows = []
 for light, heavy, settings in HANGING:
     world = hanging(light, heavy, **settings)
     for _ in range(round(DURATION / DT)):
         world.step()
     measured = [j.anchor_error() for j in world.joints]
     theory = static_error(light, heavy, world.settings.joint_hertz)
-    hang_errors[(heavy, tuple(settings.items()))] = measured
     label = ", ".join(f"{k} {v:g}" for k, v in settings.items()) or "defaults"
     rows.append((f"{light:g} / {heavy:g}", label, 1000 * theory[0], 1000 * measured[0],
                  1000 * theory[1], 1000 * measured[1],
@@ -505,8 +514,9 @@ print_table(["masses (kg)", "soft settings", "hook joint: F/(m w^2) (mm)", "meas
 # ## 3. Why substeps beat iterations at equal cost
 #
 # A sweep of the iterative solver is one pass over the constraints. A substep of the soft step
-# is two (solve, relax) plus integrating and moving the bodies: it costs about two sweeps.
-# What the substep buys:
+# is two passes over the contacts (solve, relax) plus integrating and moving the bodies: it
+# costs about two sweeps. (Joints are few and a chain's error must travel, so they get
+# `iterations` passes per substep.) What the substep buys:
 #
 # 1. **It moves the bodies.** Each constraint then sees its real, current error: a contact's
 #    separation is recomputed from how far its two bodies have moved since the step began,
@@ -522,11 +532,11 @@ print_table(["masses (kg)", "soft settings", "hook joint: F/(m w^2) (mm)", "meas
 #    $F/(m\omega^2)$ falls as $1/f^2$, so at the cap as $1/S^2$; the iterative solver's sag falls
 #    as $1/N$ (lesson 09).
 #
-# Measured on the pyramid of base 20 (210 boxes), the largest drop of its top box in 1.5 s (the
-# soft pyramid rings a little in its first seconds, so not just the last value): the
-# iterative solver with $N$ = 5,
-# 10, 20, 40 sweeps, and the soft step with $S$ = 2, 4, 8, 16 substeps, `contact_hertz` at its
-# cap $15\,S$ Hz; the cost is the time per step on this machine.
+# Measured on the pyramid of base 20 (210 boxes): the largest drop of its top box in 1.5 s (the
+# soft pyramid rings a little in its first second, so not just the last value) under the
+# iterative solver with $N$ = 5, 10, 20, 40 sweeps and under the soft step with $S$ = 2, 4, 8,
+# 16 substeps, `contact_hertz` at its cap $15\,S$ Hz; the cost is the median time per step on
+# this machine.
 
 # %%
 COST_BASE, COST_SECONDS = 20, 1.5
@@ -574,16 +584,21 @@ save_figure(fig, OUT / "substeps_vs_iterations.png", dpi=100)
 # most `max_push_speed`), and the bodies move with it. Left in the velocities, that push-out
 # speed would outlive the overlap: a box pushed out of the ground would leave it. So every
 # substep ends with a **relax** pass, the same solve with the rigid target $\dot C = 0$ and no
-# bias ($s_m = 1$, $s_i = 0$): a contact's accumulated impulse may only shrink back towards
-# zero, which takes back the separating speed the push gave, and the next substep starts from
-# velocities without it. The engine has no switch to turn relax off, so we take the soft step
+# bias ($s_m = 1$, $s_i = 0$): where the push left a separating speed, the contact's
+# accumulated impulse shrinks (never below zero) and takes that speed back, so the next substep
+# starts from velocities without it. The engine has no switch to turn relax off, so we take the soft step
 # apart: one disc resting on the ground, the ground contact alone, in 20 lines of Python with
 # the engine's `softness` (twice `contact_hertz` against a static body, $\zeta$ = 10, 4
 # substeps), warm starting, the biased solve, the move and the relax. With the position pass
 # off, it must reproduce the engine's disc exactly; then we drop the relax from it.
 
 # %%
-SUB, HERTZ_STATIC, ZETA_CONTACT, MAX_PUSH = 4, 2 * 60.0, 10.0, 3.0  # the engine's defaults
+SUB, ZETA_CONTACT, MAX_PUSH = (
+    defaults.substeps,
+    defaults.contact_damping_ratio,
+    defaults.max_push_speed,
+)
+HERTZ_STATIC = 2 * defaults.contact_hertz  # Hz: against a static body, twice as stiff
 OVERLAP = 0.02  # m, how deep the disc starts in the ground
 
 
