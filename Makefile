@@ -35,6 +35,7 @@ $(VENV)/.installed-notebook: $(STAMP)
 	touch $(VENV)/.installed-notebook
 
 test: $(STAMP)
+	$(BIN)/sandbox warmup --quiet
 	$(BIN)/python -m pytest -q
 	$(MAKE) test-bounds
 

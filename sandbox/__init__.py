@@ -4,35 +4,57 @@
 >>> world = sandbox.load_scene("scenes/drop.json")   # doctest: +SKIP
 >>> world.step()                                       # doctest: +SKIP
 
-Every public class and function is here at the top level. Rendering (matplotlib), the pymunk
-bridge and the comparison load on first use, so ``import sandbox`` stays light.
+Every public class and function is here at the top level, loaded on first use, so
+``import sandbox`` stays light.
 """
 
 from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
 
-from sandbox.body import Body
-from sandbox.controllers import LanderController, Scripted, Thruster, chain, lander_thrusters
 from sandbox.errors import SimulationError
-from sandbox.forces import Buoyancy, ConstantForce, Drag, ForceGenerator
-from sandbox.joints import Joint, PinJoint, PivotJoint, SpringJoint
-from sandbox.overlays import Layers
-from sandbox.recording import Recording, record
-from sandbox.scene import dump_scene, load_scene, read_scene_file, save_scene, validate_scene
 from sandbox.scene_fields import SceneError
-from sandbox.settings import Settings
-from sandbox.shapes import Box, Circle, Polygon, Shape
-from sandbox.trace import read_trace, run_world, write_trace
 from sandbox.vec2 import Vec2
-from sandbox.world import World
 
 try:
     __version__ = version("physics-sandbox")  # one source: the package metadata
 except PackageNotFoundError:  # running from a source tree that was never installed
     __version__ = "0+unknown"
 
-# name -> module, imported on first use (they pull in matplotlib or pymunk)
+# name -> module, imported on first use: the engine (numba), rendering (matplotlib) and the
+# pymunk bridge load only when asked for, so ``import sandbox`` stays light and the command
+# line can decide how the engine runs (compiled or not) before anything is compiled
 _LAZY = {
+    "Body": "sandbox.body",
+    "LanderController": "sandbox.controllers",
+    "Scripted": "sandbox.controllers",
+    "Thruster": "sandbox.controllers",
+    "chain": "sandbox.controllers",
+    "lander_thrusters": "sandbox.controllers",
+    "Buoyancy": "sandbox.forces",
+    "ConstantForce": "sandbox.forces",
+    "Drag": "sandbox.forces",
+    "ForceGenerator": "sandbox.forces",
+    "Joint": "sandbox.joints",
+    "PinJoint": "sandbox.joints",
+    "PivotJoint": "sandbox.joints",
+    "SpringJoint": "sandbox.joints",
+    "Layers": "sandbox.overlays",
+    "Recording": "sandbox.recording",
+    "record": "sandbox.recording",
+    "dump_scene": "sandbox.scene",
+    "load_scene": "sandbox.scene",
+    "read_scene_file": "sandbox.scene",
+    "save_scene": "sandbox.scene",
+    "validate_scene": "sandbox.scene",
+    "Settings": "sandbox.settings",
+    "Box": "sandbox.shapes",
+    "Circle": "sandbox.shapes",
+    "Polygon": "sandbox.shapes",
+    "Shape": "sandbox.shapes",
+    "read_trace": "sandbox.trace",
+    "run_world": "sandbox.trace",
+    "write_trace": "sandbox.trace",
+    "World": "sandbox.world",
     "render_gif": "sandbox.render",
     "render_png": "sandbox.render",
     "render_frames": "sandbox.render",
@@ -42,6 +64,9 @@ _LAZY = {
 }
 
 __all__ = [
+    "SceneError",
+    "SimulationError",
+    "Vec2",
     "Body",
     "Box",
     "Buoyancy",
@@ -56,14 +81,11 @@ __all__ = [
     "PivotJoint",
     "Polygon",
     "Recording",
-    "SceneError",
     "Scripted",
     "Settings",
     "Shape",
-    "SimulationError",
     "SpringJoint",
     "Thruster",
-    "Vec2",
     "World",
     "chain",
     "dump_scene",

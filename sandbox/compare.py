@@ -20,7 +20,8 @@ plus k (d - L)^2 / 2 for every damped spring.
 
 Everything is simulated before anything is written: a scene pymunk cannot express raises
 :class:`~sandbox.pymunk_bridge.BridgeError` (a ValueError with ``.path``) and a bad variant raises
-ValueError, leaving ``out_dir`` untouched. Every file is written whole or not at all.
+ValueError, leaving ``out_dir`` untouched. The files are written as one set: all of them, or (on
+any failure) none and no new folder (:func:`sandbox.atomic.output_set`).
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sandbox.atomic import atomic_write, atomic_write_text
+from sandbox.atomic import atomic_write, atomic_write_text, make_folder, output_set
 from sandbox.settings import Settings
 
 __all__ = ["ComparisonResult", "Run", "compare", "pymunk_energy", "run_pymunk_scene", "run_sandbox"]
@@ -301,10 +302,14 @@ def _deviation_figure(result: ComparisonResult, path: Path) -> None:
         ax.set_ylabel(what)
         ax.grid(alpha=0.3)
         if ax.get_lines():
-            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+            for text in ax.legend(
+                fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0)
+            ).get_texts():
+                text.set_parse_math(False)  # body names as typed, "$" and all
     axes[1].set_xlabel("t (s)")
     axes[0].set_title(
-        f"{result.scene}: position deviation from pymunk (linear below {ROUNDING:g}: rounding)"
+        f"{result.scene}: position deviation from pymunk (linear below {ROUNDING:g}: rounding)",
+        parse_math=False,
     )
     axes[1].set_title("angle deviation from pymunk")
     fig.tight_layout()
@@ -320,7 +325,7 @@ def _energy_figure(result: ComparisonResult, path: Path) -> None:
         ax.plot(run.times, run.energy, color=RUN_COLORS[k % len(RUN_COLORS)], label=run.label)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("kinetic + potential energy (J)")
-    ax.set_title(f"{result.scene}: energy")
+    ax.set_title(f"{result.scene}: energy", parse_math=False)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -440,29 +445,30 @@ def compare(
     from sandbox.trace import write_trace
 
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    for run in runs:
-        path = out / f"trace_{run.slug}.csv"
-        write_trace(run.rows, path)
-        result.files[path.stem] = path
-    if gif:
-        result.files["overlay"] = write_overlay_gif(
-            result,
-            spec,
-            out / "overlay.gif",
-            fps=fps,
-            size_px=size_px,
-            max_frames=max_frames,
-            panel=panel,
-            view=view,
-        )
-    _deviation_figure(result, out / "deviation.png")
-    _energy_figure(result, out / "energy.png")
-    result.files["deviation"] = out / "deviation.png"
-    result.files["energy"] = out / "energy.png"
-    notes = "".join(f"- {note}\n" for note in result.notes)
-    atomic_write_text(out / "summary.txt", f"{result.table}\npymunk bridge notes\n{notes}")
-    result.files["summary"] = out / "summary.txt"
+    with output_set():  # every file, or none (a folder created for them is removed again)
+        make_folder(out)
+        for run in runs:
+            path = out / f"trace_{run.slug}.csv"
+            write_trace(run.rows, path)
+            result.files[path.stem] = path
+        if gif:
+            result.files["overlay"] = write_overlay_gif(
+                result,
+                spec,
+                out / "overlay.gif",
+                fps=fps,
+                size_px=size_px,
+                max_frames=max_frames,
+                panel=panel,
+                view=view,
+            )
+        _deviation_figure(result, out / "deviation.png")
+        _energy_figure(result, out / "energy.png")
+        result.files["deviation"] = out / "deviation.png"
+        result.files["energy"] = out / "energy.png"
+        notes = "".join(f"- {note}\n" for note in result.notes)
+        atomic_write_text(out / "summary.txt", f"{result.table}\npymunk bridge notes\n{notes}")
+        result.files["summary"] = out / "summary.txt"
     if not quiet:
         print(f"wrote {len(result.files)} files to {out}")
     return result

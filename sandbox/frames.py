@@ -88,7 +88,8 @@ class FrameRenderer:
     ``panel="energy-bars"`` draws the energy bars (:mod:`sandbox.energy_bars`) beside it.
 
     Image size: the scene is ``size_px`` square; a panel adds ``size_px`` to the width, the
-    layers' key a strip to the height.
+    layers' key a strip to the height. Labels and title are drawn exactly as given (no
+    mathtext: they often hold scene and body names).
     """
 
     def __init__(
@@ -178,7 +179,7 @@ class FrameRenderer:
         ax.set_xlim(self.view[0], self.view[1])
         ax.set_ylim(self.view[2], self.view[3])
         if title:
-            ax.set_title(title, fontsize=fontsize)
+            ax.set_title(title, fontsize=fontsize, parse_math=False)  # literal: user text
 
         lw = max(0.72, 1.0 * scale)  # points; never thinner than one pixel (0.72 pt at 100 dpi)
         jlw = max(0.72, JOINT_WIDTH * lw)
@@ -253,6 +254,8 @@ class FrameRenderer:
                 for c, lab in zip(self.colors, labels, strict=True)
             ]
             legend = ax.legend(handles=handles, loc="upper right", fontsize=fontsize)
+            for text in legend.get_texts():
+                text.set_parse_math(False)  # a scene or body name with "$" is shown as typed
             legend.set_animated(True)
             self.animated.append(legend)
         self.time_text = None

@@ -270,33 +270,56 @@ def clear_forces(bodies) -> None:
 
 
 @njit
-def integrate_velocities(model, context, dt: float) -> None:
-    """The velocity stage over a time ``dt`` (the step, or a substep of it): each dynamic
-    body's velocity gets the integrator's increment; its free-motion move is remembered for
-    :func:`plan_motion`. Kinematic bodies move at their own velocity; static bodies do not
-    move."""
+def integrate_euler(bodies, context, dt: float) -> None:
+    """The velocity stage for the two Euler methods with no state-dependent force (a constant
+    acceleration over the step, :func:`euler_velocity`): the one-call steps use this one, so
+    they do not compile the look-ahead integrators and the force fields."""
     ctx = context[0]
-    bodies, _, _, joints, generators = model
-    method, gravity = ctx["integrator"], ctx["gravity"]
-    fields = has_fields(joints, generators)
-    inc = np.zeros(bodies.shape[0] if fields or method > SEMI_IMPLICIT_EULER else 0, dtype=MOTION)
-    if inc.shape[0] > 0:
-        free_increments(model, gravity, method, dt, inc)
+    gravity, explicit = ctx["gravity"], ctx["integrator"] == EXPLICIT_EULER
     for i in range(bodies.shape[0]):
         b = bodies[i]
-        if b["kind"] == DYNAMIC and inc.shape[0] == 0:
-            euler_velocity(b, gravity, dt, method == EXPLICIT_EULER)
-        elif b["kind"] == DYNAMIC:
+        if b["kind"] == DYNAMIC:
+            euler_velocity(b, gravity, dt, explicit)
+        else:
+            still_or_kinematic(b, dt)
+        b["free_vel"][0], b["free_vel"][1], b["free_omega"] = b["vel"][0], b["vel"][1], b["omega"]
+
+
+@njit
+def still_or_kinematic(b, dt: float) -> None:
+    """A body that forces do not move: a kinematic one moves at its own velocity, a static one
+    not at all."""
+    moving = b["kind"] != STATIC
+    for k in range(2):
+        b["free_move"][k] = b["vel"][k] * dt if moving else 0.0
+    b["free_turn"] = b["omega"] * dt if moving else 0.0
+
+
+@njit
+def integrate_velocities(model, context, dt: float) -> None:
+    """The velocity stage over a time ``dt`` (the step, or a substep of it): each dynamic
+    body's velocity gets the integrator's increment, every force evaluated where the method
+    looks (:func:`free_increments`); its free-motion move is remembered for
+    :func:`plan_motion`. Without state-dependent forces the Euler methods take
+    :func:`integrate_euler`."""
+    ctx = context[0]
+    bodies, _, _, joints, generators = model
+    method = ctx["integrator"]
+    if method <= SEMI_IMPLICIT_EULER and not has_fields(joints, generators):
+        integrate_euler(bodies, context, dt)
+        return
+    inc = np.zeros(bodies.shape[0], dtype=MOTION)
+    free_increments(model, ctx["gravity"], method, dt, inc)
+    for i in range(bodies.shape[0]):
+        b = bodies[i]
+        if b["kind"] == DYNAMIC:
             for k in range(2):
                 b["vel"][k] += inc[i]["v"][k]
                 b["free_move"][k] = inc[i]["p"][k]
             b["omega"] += inc[i]["w"]
             b["free_turn"] = inc[i]["phi"]
         else:
-            moving = b["kind"] != STATIC
-            for k in range(2):
-                b["free_move"][k] = b["vel"][k] * dt if moving else 0.0
-            b["free_turn"] = b["omega"] * dt if moving else 0.0
+            still_or_kinematic(b, dt)
         b["free_vel"][0], b["free_vel"][1], b["free_omega"] = b["vel"][0], b["vel"][1], b["omega"]
 
 

@@ -3,60 +3,74 @@
 Set ``SANDBOX_JIT=0`` in the environment to run the very same functions as plain Python, for
 stepping through them in a debugger or reading a traceback line by line.
 
-Compiled code is cached on disk (``cache=True``) so only the first run compiles. numba checks a
-cached function only against its own source file, so after editing a kernel, a function in
-another module that calls it could load stale machine code. To rule that out the cache lives in
-a folder named after a hash of every kernel module's source (``sandbox/__pycache__/numba-<hash>``,
-or below ``NUMBA_CACHE_DIR`` when that is set): any edit to a kernel starts a fresh cache.
+Compiled code is cached on disk (``cache=True``, in :data:`sandbox.compile_cache.CACHE_FOLDER`)
+so only the first run compiles; nothing is compiled until a kernel first runs. Compiling takes
+tens of seconds the first time: on a terminal a one-line notice and a progress bar say so
+(:class:`CompileNotice`).
 """
 
 from __future__ import annotations
 
-import hashlib
 import os
-import shutil
-from pathlib import Path
+import sys
+
+from sandbox.compile_cache import CACHE_FOLDER, take_cache_note
 
 JIT_ENABLED: bool = os.environ.get("SANDBOX_JIT", "1") != "0"
 
-_PACKAGE = Path(__file__).resolve().parent
-
-
-def kernel_sources_hash() -> str:
-    """A short hash of the source of every module of the package that compiles kernels."""
-    digest = hashlib.sha256()
-    for path in sorted(_PACKAGE.rglob("*.py")):
-        text = path.read_bytes()
-        if b"@njit" in text:
-            digest.update(path.relative_to(_PACKAGE).as_posix().encode())
-            digest.update(text)
-    return digest.hexdigest()[:16]
-
-
-def _use_fresh_cache_dir() -> None:
-    """Point numba's cache at a folder keyed by the kernel sources; drop stale sibling folders."""
-    import numba
-
-    user_dir = os.environ.get("NUMBA_CACHE_DIR")
-    base = Path(user_dir) if user_dir else _PACKAGE / "__pycache__"
-    folder = base / f"numba-{kernel_sources_hash()}"
-    numba.config.CACHE_DIR = str(folder)
-    if not user_dir:  # only tidy the folder we own
-        for old in base.glob("numba-*"):
-            if old != folder:
-                shutil.rmtree(old, ignore_errors=True)
+__all__ = ["CACHE_FOLDER", "JIT_ENABLED", "entry", "njit", "take_cache_note"]
 
 
 if JIT_ENABLED:
     import numba
+    import numba.core.event
 
-    _use_fresh_cache_dir()
+    if CACHE_FOLDER is not None:
+        numba.config.CACHE_DIR = str(CACHE_FOLDER)
+    _CACHE = CACHE_FOLDER is not None
+
+    class CompileNotice(numba.core.event.Listener):
+        """While kernels compile (the first runs on a machine), a one-line notice and a progress
+        bar on a terminal, so a wait of tens of seconds is never silent."""
+
+        EXPECTED = 150  # kernels a world of every kind compiles (the bar's length)
+
+        def __init__(self) -> None:
+            self.depth = 0
+            self.bar = None
+            self.told = False
+
+        def on_start(self, event) -> None:
+            if self.depth == 0 and self.bar is None and sys.stderr.isatty():
+                if not self.told:
+                    print(
+                        "note: compiling the engine for this machine, once (later runs load it; "
+                        "`sandbox warmup` does it ahead of a class)",
+                        file=sys.stderr,
+                    )
+                    self.told = True
+                from tqdm import tqdm
+
+                self.bar = tqdm(total=self.EXPECTED, unit=" kernels", leave=False, file=sys.stderr)
+            self.depth += 1
+            if self.bar is not None:
+                self.bar.update(1)
+
+        def on_end(self, event) -> None:
+            self.depth -= 1
+            if self.depth == 0 and self.bar is not None:
+                self.bar.close()
+                self.bar = None
+
+    NOTICE = CompileNotice()
+    numba.core.event.register("numba:compile", NOTICE)
 
     def njit(*args, **kwargs):
-        """``numba.njit(cache=True)`` (accepts the same arguments as numba.njit)."""
-        kwargs.setdefault("cache", True)
+        """``numba.njit(cache=True)`` (accepts the same arguments as numba.njit); without a
+        writable cache folder, ``cache=False``."""
+        kwargs["cache"] = kwargs.get("cache", True) and _CACHE
         if args and callable(args[0]) and len(args) == 1 and not kwargs.get("_signature"):
-            return numba.njit(cache=True)(args[0])
+            return numba.njit(**kwargs)(args[0])
         return numba.njit(*args, **kwargs)
 
 else:

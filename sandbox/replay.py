@@ -11,6 +11,8 @@ from sandbox.energy import does_work, energy_terms
 from sandbox.overlays import FROM_TRACE, LayerError, parse_layers
 from sandbox.recording import Recording
 
+MAX_FRAMES = 600  # the most frames a recording of a long run keeps (20 s of GIF at 30 fps)
+
 
 def check_trace_layers(draw: str | Iterable[str] | None) -> tuple[str, ...]:
     """The layers ``draw``, refused (:class:`LayerError`) when a trace cannot give their data:
@@ -59,10 +61,69 @@ def recording_from_rows(
     times = [rows[k * n][1] for k in range(len(data))]
     work = math.nan if does_work(world) else 0.0
     for k in range(0, len(data), max(1, int(every))):
-        values: dict[str, float] = {}
-        if energy:
-            set_state(world, data[k])
-            values = {**energy_terms(world), "energy.work": work}
-        overlay = {"velocities": data[k, :, 3:5]}
-        rec.add_frame(data[k, :, :3], times[k], overlay=overlay, **values)
+        _add_state(rec, world, data[k], times[k], energy, work)
     return rec
+
+
+def _add_state(rec: Recording, world, state: np.ndarray, t: float, energy: bool, work: float):
+    """One frame of ``rec`` from a state (n, 6) ``x, y, angle, vx, vy, omega`` at ``t`` (s)."""
+    values: dict[str, float] = {}
+    if energy:
+        set_state(world, state)
+        values = {**energy_terms(world), "energy.work": work}
+    rec.add_frame(state[:, :3], t, overlay={"velocities": state[:, 3:5]}, **values)
+
+
+def frame_stride(steps: int, every: int = 1, max_frames: int = MAX_FRAMES) -> int:
+    """The step stride that keeps at most ``max_frames`` frames of steps 0..``steps``.
+
+    At least ``every``; larger when ``steps + 1`` steps every ``every`` would exceed the bound.
+    """
+    return max(1, int(every), math.ceil((int(steps) + 1) / max(1, int(max_frames))))
+
+
+class RowSampler:
+    """Build a :class:`Recording` from a run's trace rows as they come, every ``every``-th step.
+
+    The streaming form of :func:`recording_from_rows` (same ``draw`` and ``energy``; ``world``
+    gives the outlines and, with ``energy``, is put in each kept state): memory is bounded by
+    the frames kept, not by the length of the run (pick ``every`` with :func:`frame_stride`).
+    ``keep_last`` also keeps the final step (a picture of where the run ended).
+    """
+
+    def __init__(
+        self,
+        world,
+        every: int = 1,
+        keep_last: bool = False,
+        draw: str | Iterable[str] | None = (),
+        energy: bool = False,
+    ) -> None:
+        self.recording = Recording.from_world(world, check_trace_layers(draw))
+        self.world, self.every, self.keep_last, self.energy = (
+            world,
+            max(1, int(every)),
+            keep_last,
+            energy,
+        )
+        self.work = math.nan if does_work(world) else 0.0
+        self._last: tuple[Sequence[tuple], float] | None = None
+
+    def add(self, step: int, t: float, rows: Sequence[tuple]) -> None:
+        """The rows of step ``step`` at time ``t`` (s), all bodies in the world's order."""
+        if step % self.every == 0:
+            self._add(rows, t)
+            self._last = None
+        elif self.keep_last:
+            self._last = (rows, t)
+
+    def finish(self) -> Recording:
+        """The recording (with the final step when ``keep_last``)."""
+        if self._last is not None:
+            self._add(*self._last)
+            self._last = None
+        return self.recording
+
+    def _add(self, rows: Sequence[tuple], t: float) -> None:
+        state = np.array([r[3:9] for r in rows], dtype=float).reshape(-1, 6)
+        _add_state(self.recording, self.world, state, t, self.energy, self.work)

@@ -154,6 +154,11 @@ def _boolean(value: Any, path: str) -> bool:
 def _name(value: Any, path: str) -> str:
     if not isinstance(value, str) or not value.strip():
         raise SceneError(path, f"expected a non-empty string, got {_show(value)}")
+    if not value.isascii():
+        try:
+            value.encode("utf-8")  # a lone surrogate ("\ud800" in JSON) cannot be written out
+        except UnicodeEncodeError as e:
+            raise SceneError(path, f"not valid Unicode text (character {e.start})") from None
     return value
 
 

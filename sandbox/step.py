@@ -40,6 +40,7 @@ from sandbox.broadphase.sap import sweep
 from sandbox.integrators import (
     clear_forces,
     gather_forces,
+    integrate_euler,
     integrate_velocities,
     move_bodies,
     plan_motion,
@@ -160,7 +161,6 @@ def fast_step(
     needed when ``pairs`` is too small (nothing changed: grow the buffers and call again), or 1
     plus the index of a body whose state stopped being finite."""
     ctx = context[0]
-    model = (bodies, shapes, vertices, joints, generators)
     contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
     k = 0
     if shapes.shape[0] >= 2:
@@ -172,7 +172,7 @@ def fast_step(
         )
     prepare(contacts, k, previous, bodies, context)
     gather_forces(bodies)
-    integrate_velocities(model, context, ctx["dt"])
+    integrate_euler(bodies, context, ctx["dt"])
     prepare_joints(joints, bodies, context)
     warm_start_all(contacts, k, joints, bodies, context)
     iterative.solve(contacts, k, joints, bodies, context)
@@ -257,7 +257,7 @@ def free_step(bodies, rot, shapes, vertices, joints, generators, context) -> int
     touch anything): the velocities, then the positions. Fewer arrays to hand over: this is
     the whole cost of stepping a single body."""
     gather_forces(bodies)
-    integrate_velocities((bodies, shapes, vertices, joints, generators), context, context[0]["dt"])
+    integrate_euler(bodies, context, context[0]["dt"])
     plan_motion(bodies, context[0]["dt"])
     move_bodies(bodies, rot, context)
     context[0]["contact_points"] = 0

@@ -111,10 +111,10 @@ def test_schema_command_prints_the_shipped_schema(capsys):
 def test_a_refused_pymunk_run_is_one_error_line_without_the_note(tmp_path, monkeypatch, capsys):
     from sandbox import pymunk_bridge
 
-    def refuse(spec, steps, dt=None):
+    def refuse(spec):  # where the bridge refuses a scene it cannot express
         raise pymunk_bridge.BridgeError("forces[0]", "pymunk has no such force")
 
-    monkeypatch.setattr(pymunk_bridge, "run_pymunk", refuse)
+    monkeypatch.setattr(pymunk_bridge.PymunkScene, "from_scene", staticmethod(refuse))
     out = tmp_path / "p.csv"
     args = ["simulate", str(DROP), "--engine", "pymunk", "--set", "warm_start=false"]
     assert main([*args, "--trace", str(out)]) == 2

@@ -1,23 +1,27 @@
-"""The command line: ``sandbox simulate | compare | lessons | scenes | schema`` (also
+"""The command line: ``sandbox simulate | compare | lessons | scenes | schema | warmup`` (also
 ``python -m sandbox``).
 
 One module per command (``sandbox/cli/<command>.py``, each with ``add_parser`` and ``run``);
-this one assembles the parser and turns every failure into one ``error:`` line.
+this one assembles the parser, and :mod:`sandbox.cli.exits` turns every way a command can end
+into an exit status and at most one line on stderr.
 
 Bad input exits with status 2 and one line on stderr, ``error: <field path>: <what is wrong>``,
-and writes no output file.
+and writes no output file. A run that fails after validation (divergence, disk full, out of
+memory, ...) exits 1 with one ``error:`` line and writes nothing either: the outputs of one
+command are written as a set (:func:`sandbox.atomic.output_set`). Ctrl-C exits 130 and SIGTERM
+143, quietly, removing temporary files. ``SANDBOX_DEBUG=1`` adds the traceback.
 """
 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
-from sandbox.cli import compare, lessons, scenes, schema, simulate
-from sandbox.cli.common import CliError, Parser
+from sandbox.cli import compare, lessons, scenes, schema, simulate, warmup
+from sandbox.cli.common import CliError, Parser, settle_matplotlib_config
+from sandbox.cli.exits import run_command
 
-COMMANDS = (simulate, compare, lessons, scenes, schema)
+COMMANDS = (simulate, compare, lessons, scenes, schema, warmup)
 
 EXAMPLES = """examples:
   sandbox simulate scenes/drop.json --steps 240 --gif drop.gif
@@ -25,6 +29,7 @@ EXAMPLES = """examples:
   sandbox lessons 01 07
   sandbox scenes --copy my_scenes/
   sandbox schema > scene.schema.json
+  sandbox warmup                       # compile the engine once, ahead of a class
 
 sandbox COMMAND --help shows each command's options and examples."""
 
@@ -50,26 +55,17 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point; returns the exit status (2 for bad input)."""
-    from sandbox.scene import SceneError
+    """Entry point; returns the exit status (0 done, 1 run failed, 2 bad input, 130 Ctrl-C)."""
 
-    parser = build_parser()
-    try:
+    def command() -> int:
         try:
-            args = parser.parse_args(argv)
+            args = build_parser().parse_args(argv)
         except SystemExit as done:  # --help and --version print, then stop here
             return int(done.code or 0)
+        settle_matplotlib_config()
         return args.func(args)
-    except (CliError, SceneError) as err:
-        path = err.path or "scene"  # a problem with the whole document
-        print(f"error: {path}: {err.message}", file=sys.stderr)
-        return 2
-    except ValueError as err:  # a setting or value the world itself refused
-        print(f"error: {err}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
-        return 0
+
+    return run_command(command)
 
 
 if __name__ == "__main__":

@@ -4,8 +4,12 @@ a did-you-mean for a mistyped option), checked numbers, ``--set KEY=VALUE``, rea
 from __future__ import annotations
 
 import argparse
+import contextlib
 import difflib
 import os
+import sys
+import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 
 from sandbox.fieldspec import TIME_STEP, Field, check_value
@@ -163,7 +167,11 @@ def load_spec(path: str, args: argparse.Namespace | None = None) -> dict:
 
 
 def check_output(option: str, path: str | None, suffix: str) -> None:
-    """An output path must end in ``suffix`` and sit in an existing, writable folder."""
+    """An output path must end in ``suffix`` and sit in an existing, writable folder.
+
+    Writable is tried, not assumed from permission bits (which say yes to root on a read-only
+    file system): a temporary file is created in the folder and removed.
+    """
     if path is None:
         return
     if not path.lower().endswith(suffix):
@@ -171,7 +179,65 @@ def check_output(option: str, path: str | None, suffix: str) -> None:
     folder = Path(path).resolve().parent
     if not folder.is_dir():
         raise CliError(option, f"folder {str(folder)!r} does not exist")
-    if not os.access(folder, os.W_OK):
-        raise CliError(option, f"folder {str(folder)!r} is not writable")
+    check_writable(option, folder)
     if Path(path).is_dir():
         raise CliError(option, f"{path!r} is a folder")
+
+
+def check_writable(option: str, folder: Path) -> None:
+    """Raise :class:`CliError` on ``option`` unless a file can be created in ``folder``."""
+    try:
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as err:
+        why = err.strerror or "cannot create a file there"
+        raise CliError(option, f"folder {str(folder)!r} is not writable ({why})") from None
+
+
+@contextlib.contextmanager
+def input_phase() -> Iterator[None]:
+    """Reading, validating and building the scene: whatever fails here is bad input (exit 2).
+
+    A ``ValueError`` or arithmetic error without a field path (the world refusing a value while
+    it is built) becomes a :class:`CliError` on ``scene``.
+    """
+    try:
+        yield
+    except (ValueError, ArithmeticError) as err:
+        if isinstance(err, ValueError) and isinstance(getattr(err, "path", None), str):
+            raise
+        raise CliError("scene", str(err) or type(err).__name__) from err
+
+
+def note(text: str) -> None:
+    """One ``note:`` line on stderr (something the user should know; not an error)."""
+    print(f"note: {text}", file=sys.stderr)
+
+
+def shown(name: str) -> str:
+    """A body or scene name safe to print on one terminal line (control characters escaped)."""
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(name))
+
+
+def settle_matplotlib_config() -> None:
+    """On a machine where matplotlib's config folder is not writable, give it a private
+    temporary one (``MPLCONFIGDIR``) before it is imported, instead of its two warning lines."""
+    if os.environ.get("MPLCONFIGDIR") or "matplotlib" in sys.modules:
+        return
+    from sandbox.compile_cache import private_temp_folder, writable_folder
+
+    root = os.environ.get("XDG_CONFIG_HOME") or os.path.join(os.path.expanduser("~"), ".config")
+    if writable_folder(Path(root) / "matplotlib"):
+        return
+    base = private_temp_folder()
+    if base is not None and writable_folder(base / "matplotlib"):
+        os.environ["MPLCONFIGDIR"] = str(base / "matplotlib")
+
+
+def cache_note() -> None:
+    """Print the compile cache's note (where it fell back to), if any, once."""
+    from sandbox.compile_cache import take_cache_note
+
+    text = take_cache_note()
+    if text:
+        note(text)

@@ -11,11 +11,18 @@ from sandbox.cli.common import (
     STEPS,
     CliError,
     add_settings_options,
+    cache_note,
+    check_writable,
     field_type,
+    input_phase,
     load_spec,
     parse_assignments,
 )
+from sandbox.fieldspec import Field
 from sandbox.settings import CHOICES
+
+# every step of every run is kept to compare them: fewer steps than simulate's streamed runs
+COMPARE_STEPS = Field("steps", "integer", "number of steps", STEPS.default, "", lo=0, hi=100_000)
 
 EXAMPLES = """examples:
   sandbox compare scenes/pendulum.json --steps 600 --out compare/
@@ -36,9 +43,9 @@ def add_parser(sub) -> None:
     cmp.add_argument("scene", metavar="SCENE.json", help="the scene file")
     cmp.add_argument(
         "--steps",
-        type=field_type(STEPS, "--steps"),
-        default=STEPS.default,
-        help=f"number of steps, {STEPS.range_text()}",
+        type=field_type(COMPARE_STEPS, "--steps"),
+        default=COMPARE_STEPS.default,
+        help=f"number of steps, {COMPARE_STEPS.range_text()} (every step of every run is kept)",
     )
     cmp.add_argument(
         "--dt",
@@ -85,8 +92,11 @@ def run(args: argparse.Namespace) -> int:
         raise CliError("--out", f"{args.out!r} is not a folder")
     if not out.resolve().parent.is_dir():
         raise CliError("--out", f"folder {str(out.resolve().parent)!r} does not exist")
+    check_writable("--out", out if out.is_dir() else out.resolve().parent)
     variants = variants_of(args)
-    spec = load_spec(args.scene, args)
+    with input_phase():
+        spec = load_spec(args.scene, args)
+    cache_note()
     compare(spec, args.steps, out, variants=variants, gif=not args.no_gif)
     note = pymunk_note(spec)  # after the run: a scene pymunk cannot express is one error line
     if note:

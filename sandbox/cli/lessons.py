@@ -105,6 +105,20 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _compile_first() -> None:
+    """On a machine where the engine was never compiled, compile every kernel once before the
+    lessons (``sandbox warmup``), rather than in the first lesson's kernel."""
+    import os
+    import subprocess
+
+    from sandbox.compile_cache import CACHE_FOLDER, is_warm
+
+    if os.environ.get("SANDBOX_JIT") == "0" or CACHE_FOLDER is None or is_warm():
+        return
+    print("compiling the engine for this machine first, once (about a minute)", flush=True)
+    subprocess.run([sys.executable, "-m", "sandbox", "warmup", "--quiet"], check=False)
+
+
 def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     """Run the lessons, ``jobs`` at a time; one line per lesson, in course order.
 
@@ -114,6 +128,7 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     """
     from sandbox.course.runner import Outcome, kernel_specs, run_notebook, run_script
 
+    _compile_first()
     with tempfile.TemporaryDirectory(prefix="sandbox-kernel-") as tmp:
         specs = kernel_specs(Path(tmp)) if notebooks else None
 

@@ -1,20 +1,33 @@
-"""``sandbox simulate SCENE.json``: run a scene, write a trace, a GIF, a PNG."""
+"""``sandbox simulate SCENE.json``: run a scene, write a trace, a GIF, a PNG.
+
+The run streams: each step's rows go to the trace's temporary file as they are made, and the
+GIF and PNG keep a bounded number of frames (:data:`sandbox.replay.MAX_FRAMES`; a longer run is
+drawn every few steps, and the line saying the GIF was written says so), so memory stays flat
+however many steps. All outputs are renamed into place together at the end, or none is.
+"""
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import math
 import sys
 
+from sandbox import replay
 from sandbox.cli.common import (
     DT,
     FPS,
     STEPS,
     CliError,
     add_settings_options,
+    cache_note,
     check_output,
     field_type,
+    input_phase,
     load_spec,
+    shown,
 )
+from sandbox.cli.first_run import choose_engine_speed
 from sandbox.settings import CHOICES, Settings
 
 EXAMPLES = """examples:
@@ -125,10 +138,38 @@ def pymunk_note(spec: dict) -> str | None:
     )
 
 
+def steps_per_frame(dt: float, fps: float, steps: int) -> int:
+    """Steps of ``dt`` (s) between GIF frames shown ``1/fps`` s each (real time), in 1..steps+1."""
+    per = 1.0 / (dt * fps) if dt * fps > 0 else math.inf
+    if not per < steps + 1:
+        return steps + 1
+    return max(1, round(per))
+
+
+def _world_steps(world, steps: int, recorders: list):
+    """(step, t, rows) of this engine, step 0 (initial state) to ``steps``; ``recorders`` (each
+    a :class:`~sandbox.recording.Recorder`) see every step as it is made."""
+    from sandbox.trace import world_rows
+
+    yield 0, float(world.time), world_rows(world, 0)
+    for k in range(1, steps + 1):
+        world.step()
+        for recorder in recorders:
+            recorder.step_done()
+        yield k, float(world.time), world_rows(world, k)
+
+
+def _pymunk_steps(scene, steps: int, dt: float):
+    """(step, t, rows) of a :class:`~sandbox.pymunk_bridge.PymunkScene`."""
+    for n in range(steps + 1):
+        if n > 0:
+            scene.step(dt)
+        yield n, float(scene.time), [(n, scene.time, *row) for row in scene.state()]
+
+
 def run(args: argparse.Namespace) -> int:
-    """Run the scene and write what was asked for."""
-    from sandbox.build import build_world
-    from sandbox.trace import write_trace
+    """Run the scene and write what was asked for, as one set of files."""
+    from sandbox.atomic import output_set
 
     for option, path, suffix in (
         ("--trace", args.trace, ".csv"),
@@ -137,46 +178,112 @@ def run(args: argparse.Namespace) -> int:
     ):
         check_output(option, path, suffix)
     layers, panel = check_drawing(args)
-    spec = load_spec(args.scene, args)
-    world = build_world(spec)
-    want_frames = bool(args.gif or args.png)
-    energy = panel == "energy-bars"
-    # the GIF shows every `stride`-th step; a PNG shows the last step, so all are kept for it
-    stride = max(1, round(1.0 / (spec["dt"] * args.fps)))
-    every = 1 if args.png else stride
-    if args.engine == "pymunk":
-        from sandbox.pymunk_bridge import run_pymunk
-        from sandbox.replay import recording_from_rows
+    with input_phase():
+        spec = load_spec(args.scene, args)
+        if args.engine == "sandbox":
+            choose_engine_speed(spec, args.steps)
+        from sandbox.build import build_world
 
-        rows = run_pymunk(spec, args.steps, spec["dt"])
+        world = build_world(spec)
+        scene = None
+        if args.engine == "pymunk":
+            from sandbox.pymunk_bridge import PymunkScene
+
+            scene = PymunkScene.from_scene(spec)
+    if scene is None:
+        cache_note()
+    dt, energy = spec["dt"], panel == "energy-bars"
+    natural = steps_per_frame(dt, args.fps, args.steps)
+    limit = replay.MAX_FRAMES  # frames kept, however long the run
+    gif_every = replay.frame_stride(args.steps, natural, limit)
+    png_every = replay.frame_stride(args.steps, 1, limit)  # the view fits the whole run
+    frames = {}  # "gif"/"png": a Recorder (this engine) or a RowSampler (pymunk's rows)
+    for kind, every in (("gif", gif_every), ("png", png_every)):
+        if getattr(args, kind):
+            frames[kind] = _frames(world, scene, every, kind == "png", layers, energy)
+    if scene is None:
+        steps = _world_steps(world, args.steps, list(frames.values()))
+    else:
+        steps = _pymunk_steps(scene, args.steps, dt)
+    written = []
+    with output_set():
+        last, rows_written = _run(steps, args.trace, list(frames.values()), scene is not None)
+        if args.trace:
+            written.append((args.trace, _trace_note(rows_written, args.steps, len(world.bodies))))
+        if frames:
+            from sandbox.render import render_gif, render_png
+
+            recordings = {kind: _finish(frames[kind], args.steps, kind == "png") for kind in frames}
+            if args.gif:
+                rec = recordings["gif"]
+                label = f"{args.engine}: {spec['name']}"
+                render_gif(rec, args.gif, fps=args.fps, labels=[label], draw=layers, panel=panel)
+                written.append((args.gif, _gif_note(len(rec), gif_every, natural, dt, args)))
+            if args.png:
+                render_png(recordings["png"], args.png, draw=layers, panel=panel)
+                written.append((args.png, f"the state after step {args.steps}"))
+    if scene is not None:
         note = pymunk_note(spec)  # after the run: a scene pymunk cannot express is one error line
         if note:
             print(note, file=sys.stderr)
-        if want_frames:
-            rec = recording_from_rows(build_world(spec), rows, every, layers, energy)
-    else:
-        from sandbox.recording import Recorder
-        from sandbox.trace import run_world
-
-        on_step = None
-        if want_frames:  # recorded while it runs: contacts, forces and energies of each step
-            recorder = Recorder(world, every, draw=layers, energy=energy)
-            on_step = recorder.step_done
-            rec = recorder.recording
-        rows = list(run_world(world, args.steps, on_step=on_step))
-    if want_frames:
-        from sandbox.render import render_gif, render_png
-
-        label = f"{args.engine}: {spec['name']}"
-        if args.gif:
-            options = {"draw": layers, "panel": panel, "stride": stride // every}
-            render_gif(rec, args.gif, fps=args.fps, labels=[label], **options)
-        if args.png:
-            render_png(rec, args.png, draw=layers, panel=panel)
-    if args.trace:
-        write_trace(rows, args.trace)
-    last = rows[-len(world.bodies) :] if world.bodies else []
-    print(f"{spec['name']}: {args.steps} steps of {spec['dt']:.6g} s with {args.engine}")
+    print(f"{shown(spec['name'])}: {args.steps} steps of {dt:.6g} s with {args.engine}")
     for row in last:
-        print(f"  {row[2]}: x={row[3]:.6g} y={row[4]:.6g} angle={row[5]:.6g}")
+        print(f"  {shown(row[2])}: x={row[3]:.6g} y={row[4]:.6g} angle={row[5]:.6g}")
+    for path, what in written:
+        print(f"wrote {path} ({what})")
     return 0
+
+
+def _frames(world, scene, every: int, keep_last: bool, layers, energy: bool):
+    """What keeps the frames of one image: this engine's world is recorded as it runs (its
+    contacts and forces too); pymunk's trace rows are sampled."""
+    if scene is None:
+        from sandbox.recording import Recorder
+
+        return Recorder(world, every, draw=layers, energy=energy)
+    return replay.RowSampler(world, every, keep_last=keep_last, draw=layers, energy=energy)
+
+
+def _finish(frames, steps: int, keep_last: bool):
+    """The recording; a picture of the end (``keep_last``) gets the final step even off the
+    stride."""
+    if isinstance(frames, replay.RowSampler):
+        return frames.finish()
+    if keep_last and steps % frames.every:
+        frames.capture()
+    return frames.recording
+
+
+def _run(steps, trace_path, samplers: list, rows_sampled: bool) -> tuple[list, int]:
+    """Step through ``steps``, streaming rows to the trace; the last rows and the rows written."""
+    from sandbox.trace import TraceWriter, check_finite
+
+    last: list = []
+    with contextlib.ExitStack() as stack:
+        trace = stack.enter_context(TraceWriter(trace_path)) if trace_path else None
+        for step, t, rows in steps:
+            if trace is not None:
+                trace.write(rows)  # refuses rows that are not finite
+            else:
+                check_finite(rows)  # a diverged run is reported, never drawn
+            if rows_sampled:
+                for sampler in samplers:
+                    sampler.add(step, t, rows)
+            last = rows
+    return last, trace.rows if trace is not None else 0
+
+
+def _trace_note(rows: int, steps: int, bodies: int) -> str:
+    return f"{rows:,} rows: steps 0-{steps} of {bodies} bod{'y' if bodies == 1 else 'ies'}"
+
+
+def _gif_note(frames: int, every: int, natural: int, dt: float, args) -> str:
+    """What the GIF holds; says so when a long run was drawn every few steps."""
+    text = f"{frames:,} frames at {args.fps:g} fps"
+    if every > natural:  # more steps than MAX_FRAMES frames at the asked rate can show
+        speed = every * dt * args.fps
+        text += (
+            f", one every {every:,} steps to keep at most {replay.MAX_FRAMES} frames: "
+            f"plays {speed:.3g} times faster than real time"
+        )
+    return text

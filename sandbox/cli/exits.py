@@ -1,0 +1,172 @@
+"""How a command ends: exit statuses, the one ``error:`` line, interrupts and termination.
+
+Every failure becomes one line on stderr, ``error: <what>: <why>``, and no traceback
+(``SANDBOX_DEBUG=1`` prints the traceback too):
+
+- exit 2, bad input: a :class:`~sandbox.cli.common.CliError` or
+  :class:`~sandbox.scene_fields.SceneError` (a ``ValueError`` whose ``path`` names the field), or
+  anything the scene's world refused while it was being built (see :func:`input_phase`);
+- exit 1, a run that failed after its input was accepted: :class:`~sandbox.SimulationError`
+  (divergence), ``OSError`` (disk full, a folder gone), ``MemoryError``, ``OverflowError``,
+  numba errors, anything else;
+- exit 130 on Ctrl-C (SIGINT), 143 on SIGTERM and 129 on SIGHUP, quietly: 128 + the signal
+  number, the status a shell reports for a process killed by that signal, so a caller's ``$?``
+  reads the same whether the signal came before or after the handler was installed, and a script
+  can tell a user's Ctrl-C (130) from a supervisor's stop (143).
+
+Signals are turned into exceptions, so ``finally`` blocks run and the command's temporary files
+are removed (:mod:`sandbox.atomic`). Warnings (numpy overflow and the like) are counted and
+summarised in one ``warning:`` line after a run that succeeded, instead of one line each.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import sys
+import threading
+import traceback
+import warnings
+from collections.abc import Callable, Iterator
+
+EXIT_FAILED = 1
+EXIT_BAD_INPUT = 2
+_HANDLED = {"SIGTERM": 143, "SIGHUP": 129}
+_MAX_LINE = 1000  # characters of an error message shown on its one line (a list of lessons fits)
+
+
+class Stopped(BaseException):
+    """A signal asking the command to stop (SIGTERM, SIGHUP); ``status`` is its exit status."""
+
+    def __init__(self, signum: int, status: int) -> None:
+        super().__init__(f"stopped by signal {signum}")
+        self.signum, self.status = signum, status
+
+
+def debug() -> bool:
+    """True when ``SANDBOX_DEBUG`` asks for tracebacks."""
+    return os.environ.get("SANDBOX_DEBUG", "") not in ("", "0")
+
+
+def one_line(text: str) -> str:
+    """``text`` on one line: whitespace runs (newlines too) collapsed, control characters
+    escaped, at most a few hundred characters."""
+    text = " ".join(str(text).split())
+    text = "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+    return text if len(text) <= _MAX_LINE else text[: _MAX_LINE - 3] + "..."
+
+
+def is_bad_input(err: BaseException) -> bool:
+    """Bad input: a ``ValueError`` that names the offending field in ``path``."""
+    return isinstance(err, ValueError) and isinstance(getattr(err, "path", None), str)
+
+
+def describe(err: BaseException) -> tuple[int, str]:
+    """The exit status and the ``error:`` line for a failure."""
+    from sandbox.errors import SimulationError
+
+    if is_bad_input(err):
+        message = getattr(err, "message", None) or str(err)
+        return EXIT_BAD_INPUT, f"error: {err.path or 'scene'}: {one_line(message)}"
+    if isinstance(err, SimulationError):
+        return EXIT_FAILED, f"error: {one_line(str(err))}"
+    if isinstance(err, OSError):
+        where = f"{err.filename}: " if err.filename else ""
+        why = err.strerror or str(err) or type(err).__name__
+        return EXIT_FAILED, f"error: {one_line(where + why)}"
+    if isinstance(err, MemoryError):
+        return EXIT_FAILED, "error: out of memory: try fewer steps, fewer bodies or no GIF"
+    kind = type(err).__name__
+    module = type(err).__module__.split(".")[0]
+    if module == "numba":
+        kind = f"compiled kernel failed ({kind})"
+    message = str(err) or "no message"
+    hint = " (SANDBOX_DEBUG=1 shows the traceback)"
+    return EXIT_FAILED, f"error: {one_line(f'{kind}: {message}')}{hint}"
+
+
+@contextlib.contextmanager
+def signals_as_exceptions() -> Iterator[None]:
+    """SIGTERM and SIGHUP raise :class:`Stopped` while the block runs (SIGINT already raises
+    ``KeyboardInterrupt``); a second signal while stopping is ignored, so cleanup finishes.
+
+    Signals the caller ignores (``nohup``, a background job) stay ignored. Only in the main
+    thread (elsewhere signals cannot be handled): there the block runs unchanged.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    stopping = False
+
+    def handler(signum, frame):
+        nonlocal stopping
+        if stopping:
+            return
+        stopping = True
+        raise Stopped(signum, 128 + signum)
+
+    saved = {}
+    for name in _HANDLED:
+        signum = getattr(signal, name, None)
+        if signum is None or signal.getsignal(signum) is signal.SIG_IGN:
+            continue
+        saved[signum] = signal.signal(signum, handler)
+    try:
+        yield
+    finally:
+        for signum, old in saved.items():
+            signal.signal(signum, old)
+
+
+@contextlib.contextmanager
+def warnings_summarised(summary: list[str]) -> Iterator[None]:
+    """Count warnings instead of printing them; ``summary`` gets one line describing them."""
+    if debug():
+        yield
+        return
+    seen: list[str] = []
+
+    def collect(message, category, filename, lineno, file=None, line=None):
+        seen.append(f"{category.__name__}: {message}")
+
+    with warnings.catch_warnings():
+        warnings.showwarning = collect
+        yield
+    if seen:
+        many = f"{len(seen)} warnings" if len(seen) > 1 else "1 warning"
+        summary.append(
+            f"warning: {many} during the run, first {one_line(seen[0])} "
+            "(SANDBOX_DEBUG=1 shows each)"
+        )
+
+
+def run_command(command: Callable[[], int]) -> int:
+    """Run ``command`` and turn every way it can end into an exit status and at most a line."""
+    summary: list[str] = []
+    try:
+        with signals_as_exceptions(), warnings_summarised(summary):
+            status = command()
+    except KeyboardInterrupt:
+        _traceback_if_debug()
+        return 130
+    except Stopped as stop:
+        _traceback_if_debug()
+        return stop.status
+    except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
+        with contextlib.suppress(OSError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return 0
+    except Exception as err:
+        _traceback_if_debug()
+        status, line = describe(err)
+        print(line, file=sys.stderr)
+        return status
+    for line in summary:
+        print(line, file=sys.stderr)
+    return status
+
+
+def _traceback_if_debug() -> None:
+    if debug():
+        traceback.print_exc()

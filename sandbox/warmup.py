@@ -1,0 +1,136 @@
+"""Compile every kernel ahead of time (``sandbox warmup``): small worlds of every kind, stepped a
+few times each, so that a class's first runs load machine code instead of compiling it.
+
+Each world below exercises one family of stages: every solver through both the one-call step
+and the staged step, every broadphase, every integrator with every kind of force, continuous
+collision, every joint; then the functions lessons call directly (pair finding with a trace of
+the tests, manifolds, distance and time of impact). When all of them ran, the cache is marked
+warm (:func:`sandbox.compile_cache.mark_warm`), which the command line reads.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from sandbox.body import Body
+from sandbox.compile_cache import CACHE_FOLDER, mark_warm
+from sandbox.forces import Buoyancy, ConstantForce, Drag
+from sandbox.joints import PinJoint, PivotJoint, SpringJoint
+from sandbox.shapes import Box, Circle, Polygon
+from sandbox.step import StageTimer
+from sandbox.world import World
+
+
+def sample_world(**settings) -> World:
+    """A floor, a box, a disc, a triangle, a pendulum on a pin, a hinged rod with limits and a
+    motor, a spring: every kind of shape pair and joint."""
+    w = World(gravity=(0.0, -9.81), **settings)
+    floor = w.add_body(Body("floor", type="static", position=(0.0, -0.5)))
+    floor.add_shape(Box(20.0, 1.0))
+    w.add_body(Body("box", position=(0.0, 0.5))).add_shape(Box(1.0, 1.0))
+    w.add_body(Body("disc", position=(0.3, 1.6))).add_shape(Circle(0.4, restitution=0.5))
+    w.add_body(Body("tri", position=(-1.5, 0.6))).add_shape(
+        Polygon([(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])
+    )
+    hook = w.add_body(Body("hook", type="static", position=(4.0, 3.0)))
+    bob = w.add_body(Body("bob", position=(5.0, 3.0)))
+    bob.add_shape(Circle(0.2))
+    w.add_joint(PinJoint(hook, bob))
+    rod = w.add_body(Body("rod", position=(7.0, 3.0)))
+    rod.add_shape(Box(2.0, 0.1))
+    w.add_joint(PivotJoint(hook, rod, (2.0, 0.0), (-1.0, 0.0), limits=(-0.5, 0.5)))
+    wheel = w.add_body(Body("wheel", position=(-5.0, 3.0)))
+    wheel.add_shape(Circle(0.5))
+    w.add_joint(PivotJoint(floor, wheel, (-5.0, 3.5), (0.0, 0.0), motor={"rate": 1.0}))
+    return w
+
+
+def with_forces(w: World) -> World:
+    """Every force generator and a spring."""
+    w.add_force(Drag(linear=0.1, quadratic=0.01, angular=0.01))
+    w.add_force(Buoyancy(surface_y=0.5, fluid_density=2.0, linear_drag=0.5))
+    w.add_force(ConstantForce(force=(1.0, 0.0), point=(0.1, 0.0), bodies=["box"]))
+    w.add_joint(SpringJoint(w.body("box"), w.body("disc"), stiffness=20.0, damping=0.5))
+    return w
+
+
+def step(w: World, steps: int = 4, staged: bool = False) -> None:
+    if staged:
+        w.timer = StageTimer()
+    for _ in range(steps):
+        w.step()
+
+
+def worlds():
+    """(label, world, staged) of every family the step compiles."""
+    for solver in ("iterative", "soft", "pairwise", "shock"):
+        yield f"{solver} solver", sample_world(solver=solver), False
+        yield f"{solver} solver, staged", sample_world(solver=solver), True
+    for broadphase in ("brute", "grid", "quadtree", "kdtree"):
+        yield f"{broadphase} broadphase", sample_world(broadphase=broadphase), False
+    for integrator in ("explicit_euler", "verlet", "rk4"):
+        yield f"{integrator} and forces", with_forces(sample_world(integrator=integrator)), False
+    yield "soft step with forces", with_forces(sample_world(solver="soft")), False
+    fast = sample_world()
+    fast.body("disc").velocity = (0.0, -300.0)
+    fast.add_body(Body("bullet", position=(-8.0, 2.0), velocity=(400.0, 0.0), ccd=True)).add_shape(
+        Circle(0.05)
+    )
+    yield "continuous collision", fast, False
+    lone = World()
+    lone.add_body(Body("ball")).add_shape(Circle(0.5))
+    yield "one body", lone, False
+
+
+def helpers() -> None:
+    """The compiled functions lessons and tests call on their own."""
+    from sandbox.broadphase import STRATEGIES, find_pairs_traced, shape_aabbs
+    from sandbox.buoyancy import circle_submerged, polygon_submerged
+    from sandbox.toi import distance, time_of_impact
+
+    boxes = np.array([[0.0, 0.0, 1.0, 1.0], [0.5, 0.5, 1.5, 1.5], [3.0, 3.0, 4.0, 4.0]])
+    for name in STRATEGIES:
+        find_pairs_traced(name, boxes, record=True)
+    shape_aabbs(
+        np.array([0]),
+        np.array([0]),
+        np.array([0.5]),
+        np.zeros((1, 2)),
+        np.array([0]),
+        np.array([0]),
+        np.zeros((0, 2)),
+        np.zeros((1, 2)),
+        np.array([[1.0, 0.0]]),
+    )
+    polygon_submerged(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]), 0.5)
+    circle_submerged(0.0, 0.0, 1.0, 0.5)
+    disc = (0, 0.5, np.zeros(2), np.zeros((0, 2)))
+    square = (1, 0.0, np.zeros(2), np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]))
+    distance(disc, (np.zeros(2), 0.0), square, (np.array([2.0, 0.0]), 0.0))
+    time_of_impact(
+        disc,
+        (np.zeros(2), 0.0, np.array([3.0, 0.0]), 0.0),
+        square,
+        (np.array([2.0, 0.0]), 0.0, np.array([2.0, 0.0]), 0.0),
+    )
+
+
+def warm_up(report=print) -> float:
+    """Compile (or load) every kernel; mark the cache warm. Returns the seconds it took."""
+    start = time.perf_counter()
+    for label, world, staged in worlds():
+        step(world, staged=staged)
+        world.find_contacts()
+        report(f"  {label}: ready")
+    helpers()
+    mark_warm()
+    if CACHE_FOLDER is not None:  # a background warmup's lock (sandbox.cli.first_run)
+        (CACHE_FOLDER / "warming").unlink(missing_ok=True)
+    return time.perf_counter() - start
+
+
+def where() -> str:
+    """Where the compiled kernels are kept."""
+    return str(CACHE_FOLDER) if CACHE_FOLDER is not None else "nowhere (no writable folder)"

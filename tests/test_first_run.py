@@ -1,0 +1,90 @@
+"""A machine where the engine was never compiled: a small scene runs uncompiled at once, with a
+one-line note; compiling shows a notice and a progress bar on a terminal; ``sandbox warmup``
+marks the cache warm."""
+
+import csv
+import io
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+from sandbox import compile_cache
+from sandbox.cli import first_run
+
+
+def run(args, env_extra, cwd):
+    env = {k: v for k, v in os.environ.items() if k != "SANDBOX_JIT"}
+    env.update(env_extra)
+    return subprocess.run(
+        [sys.executable, "-m", "sandbox", *args], cwd=cwd, env=env, capture_output=True, text=True
+    )
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return [[float(x) for i, x in enumerate(r) if i != 2] for r in list(csv.reader(f))[1:]]
+
+
+def test_a_small_scene_on_a_cold_cache_runs_uncompiled_and_agrees(tmp_path):
+    # an empty cache: drop's 240 steps run as plain Python (the note says so); the trace matches
+    # the compiled engine's to 1e-9 (the same functions, rounding may differ in the last bits)
+    cold = {"NUMBA_CACHE_DIR": str(tmp_path / "cache"), "SANDBOX_WARMUP": "off"}
+    done = run(["simulate", "drop", "--steps", "240", "--trace", "cold.csv"], cold, tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "this run is plain Python" in done.stderr
+    warm = run(
+        ["simulate", "drop", "--steps", "240", "--trace", "warm.csv"],
+        {"SANDBOX_JIT": "1"},
+        tmp_path,
+    )
+    assert warm.returncode == 0, warm.stderr
+    a, b = np.array(rows(tmp_path / "cold.csv")), np.array(rows(tmp_path / "warm.csv"))
+    assert a.shape == b.shape == (482, 8)
+    assert np.max(np.abs(a - b)) < 1e-9
+
+
+def test_a_large_scene_compiles_and_says_so(monkeypatch):
+    notes = []
+    monkeypatch.setattr(first_run, "note", notes.append)
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setattr(first_run, "engine_imported", lambda: False)  # a fresh command
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
+    first_run.choose_engine_speed({"bodies": [{}] * 56}, 120)  # 6,720 body-steps
+    assert "SANDBOX_JIT" not in os.environ
+    assert notes and "compiling the engine" in notes[0]
+
+
+def test_warm_marker(tmp_path, monkeypatch):
+    monkeypatch.setattr(compile_cache, "CACHE_FOLDER", tmp_path)
+    assert not compile_cache.is_warm()
+    compile_cache.mark_warm()
+    assert compile_cache.is_warm()
+
+
+def test_compile_notice_on_a_terminal(monkeypatch):
+    from sandbox import jit
+
+    if not jit.JIT_ENABLED:
+        return
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    screen = Terminal()
+    monkeypatch.setattr(jit.sys, "stderr", screen)
+    notice = jit.CompileNotice()
+    notice.on_start(None)
+    notice.on_start(None)  # a nested compile: the same bar
+    notice.on_end(None)
+    notice.on_end(None)
+    text = screen.getvalue()
+    assert text.count("compiling the engine for this machine, once") == 1
+    assert "kernels" in text  # the progress bar
+    quiet = jit.CompileNotice()  # not a terminal: nothing at all
+    monkeypatch.setattr(jit.sys, "stderr", io.StringIO())
+    quiet.on_start(None)
+    quiet.on_end(None)
+    assert quiet.bar is None and not quiet.told
