@@ -55,8 +55,13 @@ format: $(DEV_STAMP)
 docs: $(DEV_STAMP)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --site-dir site
 
-bench: $(STAMP)
+# the benchmarks against pymunk and Box2D 2.3 (the `bench` extra adds the box2d package)
+bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/run.py
+
+$(VENV)/.installed-bench: $(STAMP)
+	$(BIN)/python -m pip install -q -e '.[test,bench]'
+	touch $(VENV)/.installed-bench
 
 clean:
 	rm -rf $(VENV) outputs/*/ outputs/index.html .pytest_cache site build

@@ -1,19 +1,31 @@
-"""This engine against pymunk, step for step, in one process (``DESIGN.md``, "Performance").
+"""This engine against pymunk and Box2D 2.3, step for step, in one process (``DESIGN.md``,
+"Performance").
 
-    python benchmarks/run.py [--quick] [--only NAME ...]
+    python benchmarks/run.py [--quick] [--only NAME ...] [--clock cpu|wall]
 
 For every scene of :mod:`scenes` (rain of 100, 1,000 and 5,000 circles, pyramids of base 20 and
-40, a single ballistic body) this engine's world and pymunk's space are built from the same scene
-dict (same dt = 1/60 s, 10 iterations, gravity). After a warm-up that compiles every numba kernel
-the scenes use, both are stepped N times from the initial state, alternating blocks of 10 steps
-so that both see the same machine load; the result is milliseconds per step for each and the
-ratio sandbox / pymunk (below 1: this engine is faster).
+40, a single ballistic body) every engine of :mod:`engines` is built from the same scene dict
+(same dt = 1/60 s, 10 velocity iterations, gravity, shapes, materials): this engine with its
+iterative solver and with the soft step (``solver: soft``, 4 substeps; contact scenes only),
+pymunk, and Box2D 2.3 when the ``box2d`` package is installed (the ``bench`` extra; without it
+one line says so and the column is left out). After a warm-up that compiles every numba kernel
+the scenes use, all are stepped N times from the initial state, in turns of blocks of 10 steps
+(the first engine of a turn rotates) so that all see the same machine load. The result is
+milliseconds per step for each engine, the ratios of this engine's columns to pymunk and to
+Box2D (below 1: this engine is faster), and each engine's mean height of the dynamic bodies at
+the end (a check that all simulated the same thing).
+
+Time is measured twice: CPU time of the stepping thread (``time.thread_time``, what the table
+shows by default: time spent waiting for a core under load does not count) and wall time
+(``time.perf_counter``, ``--clock wall``). The engines step on one thread; if one ever uses
+more, the table must show wall time.
 
 Then: frames per second of GIF output for 500 bodies at 480 px (``bench_render.py``), and the
 wall time of every lesson (``sandbox lessons`` in a subprocess; skipped with ``--quick``).
 
-Writes ``benchmarks/results.csv`` and ``benchmarks/results.png`` (ratio per scene, a line at 1),
-prints the table, and puts it into ``benchmarks/README.md`` between the ``results`` markers.
+Writes ``benchmarks/results.csv`` (both clocks) and ``benchmarks/results.png`` (ratios per
+scene, a line at 1), prints the table, and puts it into ``benchmarks/README.md`` between the
+``results`` markers.
 """
 
 from __future__ import annotations
@@ -22,6 +34,7 @@ import argparse
 import csv
 import gc
 import io
+import os
 import platform
 import re
 import subprocess
@@ -32,43 +45,51 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pymunk
+from engines import (  # benchmarks/engines.py
+    ALL_NAMES,
+    BOX2D_MISSING,
+    BOX2D_VERSION,
+    ENGINES,
+    SANDBOX_ENGINES,
+    SOFT_SUBSTEPS,
+    Engine,
+)
 
 import scenes  # benchmarks/scenes.py, beside this file
 from sandbox.atomic import atomic_write, atomic_write_text
-from sandbox.build import build_world
-from sandbox.pymunk_bridge import PymunkScene
 from sandbox.scene import validate_scene
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-BLOCK = 10  # steps per timed block; the engines alternate block by block
+BLOCK = 10  # steps per timed block; the engines take turns block by block
+CLOCKS = {"cpu": "CPU time of the stepping thread", "wall": "wall time"}
+SANDBOX_NAMES = [e.name for e in SANDBOX_ENGINES]
+PEER_NAMES = [n for n in ALL_NAMES if n not in SANDBOX_NAMES]
+RATIOS = [(s, p) for p in PEER_NAMES for s in SANDBOX_NAMES]  # (this engine's column, peer)
 FIELDS = (
-    "benchmark",
-    "bodies",
-    "steps",
-    "sandbox_ms_per_step",
-    "pymunk_ms_per_step",
-    "ratio",
-    "sandbox_mean_y",
-    "pymunk_mean_y",
-    "value",
-    "unit",
-    "status",
+    ["benchmark", "bodies", "steps", "clock"]
+    + [f"{n}_{c}_ms_per_step" for n in ALL_NAMES for c in CLOCKS]
+    + [f"{n}_first_step_{c}_ms" for n in ALL_NAMES for c in CLOCKS]
+    + [f"{s}_per_{p}" for s, p in RATIOS]
+    + [f"{n}_mean_y" for n in ALL_NAMES]
+    + ["value", "unit", "status"]
 )
 
 
 @dataclass
 class Case:
-    """One step benchmark: a scene builder, and how many steps to time (full, quick)."""
+    """One step benchmark: a scene builder, how many steps to time (full, quick), and whether
+    anything in it touches (the soft step is timed on contact scenes only)."""
 
     name: str
     build: object
     steps: int
     quick_steps: int
+    contacts: bool = True
 
 
 CASES = [
-    Case("ballistic", scenes.ballistic, 3000, 600),
+    Case("ballistic", scenes.ballistic, 3000, 600, contacts=False),
     Case("rain_100", lambda: scenes.rain(100), 300, 120),
     Case("rain_1000", lambda: scenes.rain(1000), 300, 120),
     Case("rain_5000", lambda: scenes.rain(5000), 300, 60),
@@ -87,72 +108,112 @@ def row(benchmark: str, **values) -> dict:
 
 
 def warm_up() -> None:
-    """Compile (or load from numba's cache) every kernel the scenes use: circles against circles
-    and boxes, boxes against boxes, free flight. Small scenes, run until they touch."""
+    """Compile (or load from numba's cache) every kernel the scenes use, under every solver:
+    circles against circles and boxes, boxes against boxes, free flight. Small scenes, run until
+    they touch."""
     for spec, steps in (
         (scenes.ballistic(), 5),
         (scenes.rain(30), 90),
         (scenes.pyramid(4), 30),
     ):
         spec = validate_scene(spec)
-        world = build_world(spec)
-        space = PymunkScene.from_scene(spec).space
-        for _ in range(steps):
-            world.step()
-            space.step(spec["dt"])
+        for engine in ENGINES:
+            engine.build(spec).run(steps)
 
 
-def time_steps(spec: dict, steps: int) -> tuple[float, float, float, float]:
-    """Seconds per step (this engine, pymunk), both from the initial state of ``spec``, and the
-    mean height of the dynamic bodies at the end in each (m: a check that both did the same).
+@dataclass
+class Timing:
+    """Seconds per step of one engine on both clocks, its first step's (s), and its mean height
+    at the end (m)."""
 
-    The engines alternate blocks of ``BLOCK`` steps; pymunk's own ``Space.step`` is timed (no
-    bridge code runs inside the timed part: these scenes have no forces to add).
+    cpu: float
+    wall: float
+    first_cpu: float
+    first_wall: float
+    mean_y: float
+
+
+def _idle(n: int) -> None:
+    """The timed loop with no engine in it: what the clocks and the loop cost by themselves."""
+    for _ in range(n):
+        pass
+
+
+def time_steps(spec: dict, steps: int, engines: list[Engine]) -> dict[str, Timing]:
+    """Every engine stepped ``steps`` times from the initial state of ``spec``: seconds per step
+    and the mean height of the dynamic bodies at the end (m: a check that all did the same).
+
+    Each engine's first step is timed on its own and kept apart: this engine sets up its
+    arrays there (about 1 ms for one body, 8 ms for 210 boxes), a cost of building the world, not
+    of stepping it. The other ``steps - 1`` are timed in turns of ``BLOCK`` steps; the engine that
+    starts a turn rotates, so none always follows the same one (whose memory traffic it would
+    inherit). Each turn also times an empty block; its time (reading the CPU clock is a system
+    call of about 1-2 us here, as long as a few of pymunk's free-flight steps) is taken off every
+    engine's.
     """
     spec = validate_scene(spec)
-    world = build_world(spec)
-    bridge = PymunkScene.from_scene(spec)
-    space: pymunk.Space = bridge.space
-    dt = spec["dt"]
-    mine = theirs = 0.0
-    done = 0
+    steppers = {e.name: e.build(spec) for e in engines}
+    runs = {name: stepper.run for name, stepper in steppers.items()}
+    runs[""] = _idle
+    names = list(runs)
+    cpu = dict.fromkeys(names, 0.0)
+    wall = dict.fromkeys(names, 0.0)
+    first = {}
     gc.collect()
+    for name in names:
+        wall_0, cpu_0 = time.perf_counter(), time.thread_time()
+        runs[name](1)
+        cpu_1, wall_1 = time.thread_time(), time.perf_counter()
+        first[name] = (cpu_1 - cpu_0, wall_1 - wall_0)
+    done, turn = 1, 0
     while done < steps:
         n = min(BLOCK, steps - done)
-        start = time.perf_counter()
-        for _ in range(n):
-            world.step()
-        middle = time.perf_counter()
-        for _ in range(n):
-            space.step(dt)
-        end = time.perf_counter()
-        mine += middle - start
-        theirs += end - middle
+        k = turn % len(names)
+        for name in names[k:] + names[:k]:
+            run = runs[name]
+            wall_0, cpu_0 = time.perf_counter(), time.thread_time()
+            run(n)
+            cpu_1, wall_1 = time.thread_time(), time.perf_counter()
+            cpu[name] += cpu_1 - cpu_0
+            wall[name] += wall_1 - wall_0
         done += n
+        turn += 1
     dynamic = [i for i, b in enumerate(spec["bodies"]) if b["type"] == "dynamic"]
-    mine_y = sum(world.bodies[i].position[1] for i in dynamic) / max(1, len(dynamic))
-    theirs_y = sum(bridge.bodies[i].position.y for i in dynamic) / max(1, len(dynamic))
-    return mine / steps, theirs / steps, mine_y, theirs_y
+    timed = max(1, steps - 1)
+    return {
+        name: Timing(
+            cpu=(cpu[name] - cpu[""]) / timed,
+            wall=(wall[name] - wall[""]) / timed,
+            first_cpu=first[name][0] - first[""][0],
+            first_wall=first[name][1] - first[""][1],
+            mean_y=stepper.mean_y(dynamic),
+        )
+        for name, stepper in steppers.items()
+    }
 
 
-def bench_case(case: Case, quick: bool) -> dict:
+def bench_case(case: Case, quick: bool, clock: str) -> dict:
     spec = case.build()
     steps = case.quick_steps if quick else case.steps
+    engines = [e for e in ENGINES if case.contacts or not e.contacts_only]
+    base = {"bodies": scenes.body_count(spec), "steps": steps, "clock": clock}
     try:
-        mine, theirs, mine_y, theirs_y = time_steps(spec, steps)
-    except Exception as err:  # a scene this engine cannot run yet: report it, go on
+        timings = time_steps(spec, steps, engines)
+    except Exception as err:  # a scene an engine cannot run: report it, go on
         traceback.print_exc(limit=3)
-        return row(case.name, bodies=scenes.body_count(spec), steps=steps, status=f"error: {err}")
-    return row(
-        case.name,
-        bodies=scenes.body_count(spec),
-        steps=steps,
-        sandbox_ms_per_step=f"{1e3 * mine:.4g}",
-        pymunk_ms_per_step=f"{1e3 * theirs:.4g}",
-        ratio=f"{mine / theirs:.3g}",
-        sandbox_mean_y=f"{mine_y:.3f}",
-        pymunk_mean_y=f"{theirs_y:.3f}",
-    )
+        return row(case.name, **base, status=f"error: {err}")
+    values = {}
+    for name, t in timings.items():
+        values[f"{name}_cpu_ms_per_step"] = f"{1e3 * t.cpu:.4g}"
+        values[f"{name}_wall_ms_per_step"] = f"{1e3 * t.wall:.4g}"
+        values[f"{name}_first_step_cpu_ms"] = f"{1e3 * t.first_cpu:.4g}"
+        values[f"{name}_first_step_wall_ms"] = f"{1e3 * t.first_wall:.4g}"
+        values[f"{name}_mean_y"] = f"{t.mean_y:.3f}"
+    for mine, peer in RATIOS:
+        if mine in timings and peer in timings:
+            ratio = getattr(timings[mine], clock) / getattr(timings[peer], clock)
+            values[f"{mine}_per_{peer}"] = f"{ratio:.3g}"
+    return row(case.name, **base, **values)
 
 
 # ---------------------------------------------------------------- rendering and lessons
@@ -192,33 +253,36 @@ def bench_lessons() -> list[dict]:
 # ---------------------------------------------------------------- output
 
 
-def format_table(rows: list[dict]) -> str:
-    """A Markdown table of the results."""
-    head = [
-        "benchmark",
-        "bodies",
-        "steps",
-        "sandbox ms/step",
-        "pymunk ms/step",
-        "ratio",
-        "mean y at end (m)",
-        "other",
-    ]
+def _joined(r: dict, names: list[str], key: str) -> str:
+    """One cell holding every engine's ``{name}_{key}`` value, ``-`` where it did not run."""
+    if not any(r[f"{n}_{key}"] for n in names):
+        return ""
+    return " / ".join(r[f"{n}_{key}"] or "-" for n in names)
+
+
+def format_table(rows: list[dict], clock: str) -> str:
+    """A Markdown table of the results: ms per step on ``clock`` for every engine that ran, the
+    ratios of this engine's columns to each peer, every engine's mean height at the end, and
+    every engine's first step (ms, kept out of the time per step)."""
+    names = [e.name for e in ENGINES]
+    ratios = [(m, p) for m, p in RATIOS if m in names and p in names]
+    head = (
+        ["benchmark", "bodies", "steps"]
+        + [f"{n} ms/step" for n in names]
+        + [f"{m} / {p}" for m, p in ratios]
+        + [f"mean y at end (m): {' / '.join(names)}", "first step (ms)", "other"]
+    )
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         other = f"{r['value']} {r['unit']}".strip()
         if r["status"] != "ok":
             other = f"{other} ({r['status']})".strip()
-        cells = [
-            r["benchmark"],
-            r["bodies"],
-            r["steps"],
-            r["sandbox_ms_per_step"],
-            r["pymunk_ms_per_step"],
-            r["ratio"],
-            f"{r['sandbox_mean_y']} / {r['pymunk_mean_y']}" if r["sandbox_mean_y"] else "",
-            other,
-        ]
+        cells = (
+            [r["benchmark"], r["bodies"], r["steps"]]
+            + [r[f"{n}_{clock}_ms_per_step"] for n in names]
+            + [r[f"{m}_per_{p}"] for m, p in ratios]
+            + [_joined(r, names, "mean_y"), _joined(r, names, f"first_step_{clock}_ms"), other]
+        )
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")
     return "\n".join(lines)
 
@@ -231,23 +295,34 @@ def write_csv(rows: list[dict], path: Path) -> None:
 
 
 def write_plot(rows: list[dict], path: Path, title: str) -> None:
+    """Grouped bars: for each scene, every ratio of this engine's columns to a peer."""
     from matplotlib.figure import Figure
 
-    ratios = [(r["benchmark"], float(r["ratio"])) for r in rows if r["ratio"]]
-    fig = Figure(figsize=(8, 4.5))
+    series = [(m, p) for m, p in RATIOS if any(r[f"{m}_per_{p}"] for r in rows)]
+    scenes_ = [r["benchmark"] for r in rows if any(r[f"{m}_per_{p}"] for m, p in series)]
+    by_name = {r["benchmark"]: r for r in rows}
+    fig = Figure(figsize=(10, 4.8))
     ax = fig.subplots()
-    if ratios:
-        names, values = zip(*ratios, strict=True)
-        colors = ["C2" if v <= 1.0 else "C3" for v in values]
-        bars = ax.bar(names, values, color=colors)
-        ax.bar_label(bars, labels=[f"{v:.2g}" for v in values], fontsize=8)
-        if max(values) / min(values) > 8:  # log scale when the ratios span a wide range
-            ax.set_yscale("log")
-    ax.axhline(1.0, color="k", linewidth=1.0, label="as fast as pymunk")
-    ax.set_ylabel("time per step, sandbox / pymunk")
-    ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=8)
-    ax.tick_params(axis="x", labelsize=8)
+    width = 0.8 / max(1, len(series))
+    values = []
+    for j, (mine, peer) in enumerate(series):
+        xs, ys = [], []
+        for i, name in enumerate(scenes_):
+            cell = by_name[name][f"{mine}_per_{peer}"]
+            if cell:
+                xs.append(i + (j - 0.5 * (len(series) - 1)) * width)
+                ys.append(float(cell))
+        values += ys
+        bars = ax.bar(xs, ys, width=width, color=f"C{j}", label=f"{mine} / {peer}")
+        ax.bar_label(bars, labels=[f"{v:.2g}" for v in ys], fontsize=7)
+    if values and max(values) / min(values) > 8:  # log scale when the ratios span a wide range
+        ax.set_yscale("log")
+    ax.axhline(1.0, color="k", linewidth=1.0, label="as fast as the peer")
+    ax.set_xticks(range(len(scenes_)), scenes_, fontsize=8)
+    ax.set_xlabel("scene")
+    ax.set_ylabel("time per step, this engine / peer (1)")
+    ax.set_title(title, fontsize=8, wrap=True)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=100)
@@ -268,8 +343,23 @@ def update_readme(path: Path, table: str, title: str) -> None:
     atomic_write_text(path, f"{before}{start}\n{title}\n\n{table}\n{end}{after}")
 
 
+def make_title(mode: str, clock: str) -> str:
+    """What ran (``mode``: "full run", "quick run (--only)", ...) where, and what the table's
+    times are."""
+    box2d = f"Box2D {BOX2D_VERSION}" if BOX2D_VERSION else "Box2D not installed"
+    positions = " (Box2D also 3 position iterations)" if BOX2D_VERSION else ""
+    return (
+        f"{time.strftime('%Y-%m-%d')}, {mode}: "
+        f"Python {platform.python_version()}, pymunk {pymunk.version}, {box2d}, "
+        f"{platform.machine()}; dt = 1/60 s, 10 velocity iterations{positions}, "
+        f"soft: {SOFT_SUBSTEPS} substeps; times: {CLOCKS[clock]}"
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description="This engine against pymunk, step for step.")
+    parser = argparse.ArgumentParser(
+        description="This engine against pymunk and Box2D 2.3, step for step."
+    )
     parser.add_argument("--quick", action="store_true", help="fewer steps, no lesson timing")
     parser.add_argument(
         "--only",
@@ -277,9 +367,23 @@ def main(argv: list[str] | None = None) -> int:
         metavar="NAME",
         help="only these step benchmarks (print, write nothing)",
     )
+    parser.add_argument(
+        "--clock",
+        choices=sorted(CLOCKS),
+        default="cpu",
+        help="the time the table shows: cpu (the stepping thread's, default) or wall",
+    )
     parser.add_argument("--no-readme", action="store_true", help="leave README.md as it is")
     args = parser.parse_args(argv)
 
+    known = [c.name for c in CASES]
+    unknown = [name for name in args.only or [] if name not in known]
+    if unknown:
+        parser.error(f"--only: unknown benchmark {', '.join(unknown)} (one of {', '.join(known)})")
+    if os.environ.get("SANDBOX_JIT") == "0":
+        print("SANDBOX_JIT=0: this engine runs uncompiled (plain Python) in this benchmark")
+    if BOX2D_MISSING:
+        print(f"Box2D skipped: {BOX2D_MISSING} (pip install -e '.[bench]' adds the box2d package)")
     cases = [c for c in CASES if not args.only or c.name in args.only]
     print("warming up (compiling) ...", flush=True)
     start = time.perf_counter()
@@ -287,21 +391,20 @@ def main(argv: list[str] | None = None) -> int:
     print(f"warm-up {time.perf_counter() - start:.1f} s", flush=True)
     rows = []
     for case in cases:
-        rows.append(bench_case(case, args.quick))
+        rows.append(bench_case(case, args.quick, args.clock))
         r = rows[-1]
-        print(f"{case.name}: {r['sandbox_ms_per_step'] or '-'} ms vs", end=" ")
-        print(f"{r['pymunk_ms_per_step'] or '-'} ms per step ({r['status']})", flush=True)
+        times = ", ".join(
+            f"{e.name} {r[f'{e.name}_{args.clock}_ms_per_step'] or '-'}" for e in ENGINES
+        )
+        print(f"{case.name}: {times} ms per step ({r['status']})", flush=True)
     if not args.only:
         rows.append(bench_gif())
         if not args.quick:
             rows.extend(bench_lessons())
 
-    mode = "quick" if args.quick else "full"
-    title = (
-        f"{time.strftime('%Y-%m-%d')}, {mode} run: Python {platform.python_version()}, "
-        f"pymunk {pymunk.version}, {platform.machine()}, dt = 1/60 s, 10 iterations"
-    )
-    table = format_table(rows)
+    mode = f"{'quick' if args.quick else 'full'} run{' (--only)' if args.only else ''}"
+    title = make_title(mode, args.clock)
+    table = format_table(rows, args.clock)
     print()
     print(title)
     print(table)

@@ -137,7 +137,7 @@ class Body:
             self._constant = (np.array(value, dtype=float), self._constant[1])
         else:
             self.world.const_force[self.index] = value
-            self.world._constants_changed()
+            self.world._constants_changed(self.index)
 
     @property
     def constant_torque(self) -> float:
@@ -153,7 +153,7 @@ class Body:
             self._constant = (self._constant[0], float(value))
         else:
             self.world.const_torque[self.index] = float(value)
-            self.world._constants_changed()
+            self.world._constants_changed(self.index)
 
     # --- state (views into the world arrays) -------------------------------------------------
     def _w(self):
@@ -188,7 +188,7 @@ class Body:
             return
         w, i = self.world, self.index
         w.com[i] = np.asarray(value, dtype=float) + _rot(*w.cs[i], w.local_com[i])
-        w._state_changed()
+        w._state_changed(i)
 
     @property
     def center_of_mass(self) -> Vec2:
@@ -228,7 +228,7 @@ class Body:
             self._init["velocity"] = np.array(value, dtype=float)
         else:
             self.world.vel[self.index] = np.asarray(value, dtype=float)
-            self.world._state_changed()
+            self.world._state_changed(self.index)
 
     @property
     def angular_velocity(self) -> float:
@@ -244,7 +244,7 @@ class Body:
             self._init["angular_velocity"] = float(value)
         else:
             self.world.omega[self.index] = float(value)
-            self.world._state_changed()
+            self.world._state_changed(self.index)
 
     @property
     def mass(self) -> float:
@@ -287,6 +287,7 @@ class Body:
     def apply_force(self, force, point=None) -> None:
         """Add a force (N) at a world point (default: the centre of mass); tau = r x f."""
         w = self._w()
+        w.wake(self.index)
         f = np.asarray(force, dtype=float)
         w.force[self.index] += f
         if point is not None:
@@ -295,17 +296,20 @@ class Body:
 
     def apply_torque(self, torque: float) -> None:
         """Add a torque (N m) for this step."""
-        self._w().torque[self.index] += float(torque)
+        w = self._w()
+        w.wake(self.index)
+        w.torque[self.index] += float(torque)
 
     def apply_impulse(self, impulse, point=None) -> None:
         """Change momentum at once: v += j / m, omega += (r x j) / I."""
         w, i = self._w(), self.index
+        w.wake(i)
         j = np.asarray(impulse, dtype=float)
         w.vel[i] += j * w.inv_mass[i]
         if point is not None:
             r = np.asarray(point, dtype=float) - w.com[i]
             w.omega[i] += (r[0] * j[1] - r[1] * j[0]) * w.inv_moment[i]
-        w._state_changed()
+        w._state_changed(i)
 
     def kinetic_energy(self) -> float:
         """m |v|^2 / 2 + I omega^2 / 2 (J); 0 for static and kinematic bodies."""

@@ -19,6 +19,7 @@ SOFT_DEFAULTS = (
     ("joint_hertz", 60.0),
     ("joint_damping_ratio", 5.0),
     ("max_push_speed", 3.0),
+    ("sleep", False),
 )
 
 
@@ -44,3 +45,4 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     for key, default in SOFT_DEFAULTS:
         ctx[key] = getattr(s, key, default)
     ctx["diverged"] = -1
+    ctx["awake"] = -1  # sleep: not known until a step has run

@@ -37,6 +37,7 @@ import pymunk
 from sandbox.buoyancy import circle_submerged, polygon_submerged  # also for the tests
 from sandbox.geometry import polygon_problem
 from sandbox.settings import Settings
+from sandbox.sleep import TIME_TO_SLEEP
 
 DEFAULT_DT = 1.0 / 60.0
 DEFAULT_GRAVITY = (0.0, -9.81)
@@ -213,6 +214,8 @@ class PymunkScene:
             raise BridgeError("dt", f"must be > 0, got {scene.dt}")
         settings = spec.get("settings") or {}
         space.iterations = int(_num(settings, "iterations", DEFAULT_ITERATIONS))
+        if settings.get("sleep"):  # pymunk's sleeping: idle this long (s), speed from gravity
+            space.sleep_time_threshold = TIME_TO_SLEEP
         scene._note_settings(settings)
         for i, body_spec in enumerate(spec.get("bodies") or []):
             scene._add_body(body_spec, f"bodies[{i}]")

@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-# body kinds (``BODY["kind"]``)
-DYNAMIC, STATIC, KINEMATIC = 0, 1, 2
+# body kinds (``BODY["kind"]``); a SLEEPING body is a dynamic one put to sleep (sandbox.sleep):
+# the step treats it as immovable until something wakes it
+DYNAMIC, STATIC, KINEMATIC, SLEEPING = 0, 1, 2, 3
 # shape kinds (``SHAPE["kind"]``)
 CIRCLE, POLYGON = 0, 1
 # joint kinds (``JOINT["kind"]``)
@@ -30,7 +31,7 @@ V2 = (np.float64, 2)  # a 2D vector field
 
 BODY = np.dtype(
     [
-        ("kind", I8),  # DYNAMIC, STATIC or KINEMATIC
+        ("kind", I8),  # DYNAMIC, STATIC, KINEMATIC or SLEEPING
         ("com", V2),  # centre of mass in the world (m)
         ("vel", V2),  # velocity of the centre of mass (m/s)
         ("omega", F8),  # angular velocity (rad/s)
@@ -57,6 +58,10 @@ BODY = np.dtype(
         ("motion_turn", F8),  # and turn (rad); continuous collision may shorten both
         ("turn", F8),  # scratch: how far the position passes turned the body (rad)
         ("delta_position", V2),  # soft step: how far the centre of mass moved this step (m)
+        ("sleep_time", F8),  # how long the body has been slower than the sleep tolerances (s)
+        ("island", I8),  # sleep: the smallest body index of its island of contacts and joints
+        ("sleep_inv_mass", F8),  # a sleeping body's inverse mass and moment, put aside
+        ("sleep_inv_moment", F8),
     ],
     align=True,
 )
@@ -205,7 +210,7 @@ PROXY = np.dtype(
     [
         ("aabb", F8, 4),  # shape k's box [xmin, ymin, xmax, ymax], grown by the margin (m)
         ("body", I8),  # shape k's body
-        ("fixed", I8),  # 1 when that body cannot be pushed (static or kinematic)
+        ("fixed", I8),  # bit flags, pairs sharing a bit are left out (step.label_proxies)
         ("order", I8),  # the shape at place k of the sorted sweep
         ("sweep_box", F8, 4),  # its box, its body and fixed flag, copied in sweep order
         ("sweep_body", I8),
@@ -240,6 +245,7 @@ CONTEXT = np.dtype(
         ("joint_hertz", F8),
         ("joint_damping_ratio", F8),
         ("max_push_speed", F8),
+        ("sleep", np.bool_),  # sleeping islands on
         # reported by the stages
         ("pair_tests", I8),
         ("pairs", I8),
@@ -252,6 +258,7 @@ CONTEXT = np.dtype(
         ("contact_count", I8, 2),  # how many contacts each set holds
         ("need", I8),  # > 0: the pair buffer needs this many rows (nothing was changed)
         ("diverged", I8),  # the first body whose state stopped being finite, else -1
+        ("awake", I8),  # sleep: bodies awake after the last step (dynamic, not sleeping)
     ],
     align=True,
 )

@@ -55,7 +55,7 @@ from sandbox.joints.solve import (
 )
 from sandbox.narrowphase import collide_into
 from sandbox.penetration import fix_positions
-from sandbox.records import DYNAMIC
+from sandbox.sleep import fall_asleep, moving_kinematic, wake_touched
 from sandbox.solvers import SOLVERS, iterative
 from sandbox.solvers.common import (
     count_points,
@@ -83,13 +83,20 @@ STAGES = (
 
 
 # --- the stages -------------------------------------------------------------------------------
+# the broadphase leaves out pairs whose flags share a bit: static with static, sleeping or
+# kinematic; sleeping with sleeping. A moving kinematic body still meets a sleeping one (to wake it)
+FIXED_FLAGS = (0, 3, 3, 1)  # by kind: DYNAMIC, STATIC, KINEMATIC (standing still), SLEEPING
+MOVING_KINEMATIC = 2
+
+
 @njit
 def label_proxies(shapes, bodies, proxies) -> None:
     """Each shape's body and whether that body can be pushed, for the broadphase's filter."""
     for k in range(shapes.shape[0]):
         b = shapes[k]["body"]
         proxies[k]["body"] = b
-        proxies[k]["fixed"] = 1 if bodies[b]["kind"] != DYNAMIC else 0
+        kind = bodies[b]["kind"]
+        proxies[k]["fixed"] = MOVING_KINEMATIC if moving_kinematic(bodies[b]) else FIXED_FLAGS[kind]
 
 
 @njit
@@ -151,6 +158,37 @@ def store_impulses(k: int, bodies, context) -> int:
     return 0
 
 
+@njit
+def find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context) -> int:
+    """Stages 1 and 2: the pairs, then their manifolds into ``contacts``. Returns how many
+    contacts, or minus the pair rows needed (as :func:`find_pairs`). With sleep on, an awake
+    body touching a sleeping island wakes it (:func:`sandbox.sleep.wake_touched`) and both
+    stages run again, for the island's own contacts, left out while it slept."""
+    if shapes.shape[0] < 2:
+        return 0
+    ctx = context[0]
+    k = 0
+    for _ in range(2):
+        npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
+        if npairs < 0:
+            return npairs
+        k = collide_into(
+            pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
+        )
+        if not ctx["sleep"] or wake_touched(contacts, k, bodies) == 0:
+            break
+    return k
+
+
+@njit
+def settle(contacts, k: int, joints, bodies, context) -> None:
+    """With sleep on, the end of the step: islands at rest long enough fall asleep
+    (:func:`sandbox.sleep.fall_asleep`); ``ctx["awake"]`` counts the bodies still awake."""
+    ctx = context[0]
+    if ctx["sleep"]:
+        ctx["awake"] = fall_asleep(contacts, k, joints, bodies, ctx["dt"])
+
+
 # --- the step, in one compiled call ------------------------------------------------------------
 @njit
 def fast_step(
@@ -162,14 +200,9 @@ def fast_step(
     plus the index of a body whose state stopped being finite."""
     ctx = context[0]
     contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
-    k = 0
-    if shapes.shape[0] >= 2:
-        npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
-        if npairs < 0:
-            return npairs
-        k = collide_into(
-            pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
-        )
+    k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
+    if k < 0:
+        return k
     prepare(contacts, k, previous, bodies, context)
     gather_forces(bodies)
     integrate_euler(bodies, context, ctx["dt"])
@@ -182,6 +215,7 @@ def fast_step(
     fix_positions(contacts, k, joints, bodies, rot, context)
     ctx["contact_points"] = count_points(contacts, k)
     clear_forces(bodies)
+    settle(contacts, k, joints, bodies, context)
     return store_impulses(k, bodies, context)
 
 
@@ -234,20 +268,16 @@ def soft_step(
     ctx = context[0]
     model = (bodies, shapes, vertices, joints, generators)
     contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
-    k = 0
-    if shapes.shape[0] >= 2:
-        npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
-        if npairs < 0:
-            return npairs
-        k = collide_into(
-            pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
-        )
+    k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
+    if k < 0:
+        return k
     begin_soft(contacts, k, previous, model, context)
     soft_substeps(contacts, k, model, rot, context, False)
     fix_positions(contacts, k, joints, bodies, rot, context)
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
     ctx["contact_points"] = count_points(contacts, k)
     clear_forces(bodies)
+    settle(contacts, k, joints, bodies, context)
     return store_impulses(k, bodies, context)
 
 
@@ -306,7 +336,7 @@ def staged_pairs(world, a, ctx) -> int:
     found, tests = find_pairs_by_name(
         world.settings.broadphase,
         np.ascontiguousarray(proxies["aabb"]),
-        proxies["fixed"].astype(bool),
+        np.ascontiguousarray(proxies["fixed"]),
         np.ascontiguousarray(proxies["body"]),
     )
     ctx["pair_tests"] = tests
@@ -344,6 +374,19 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
             ctx["contact_margin"],
             contacts,
         )
+        if ctx["sleep"] and wake_touched(contacts, k, a.bodies) > 0:
+            k = find_contacts(
+                a.shapes,
+                a.vertices,
+                a.bodies,
+                a.joints,
+                a.buffers.proxies,
+                a.buffers.pairs,
+                contacts,
+                a.context,
+            )
+            if k < 0:
+                return k
         clock.lap("collide")
     if world.settings.solver == "soft":
         return staged_soft(world, (contacts, k, previous), a, clock)
@@ -369,6 +412,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     clock.lap("fix_positions")
     ctx["contact_points"] = count_points(contacts, k)
     clear_forces(a.bodies)
+    settle(contacts, k, a.joints, a.bodies, a.context)
     status = store_impulses(k, a.bodies, a.context)
     clock.lap("store_impulses")
     if timer is not None:
@@ -390,6 +434,7 @@ def staged_soft(world, found, a, clock) -> int:
     clock.lap("restitution")
     ctx["contact_points"] = count_points(contacts, k)
     clear_forces(a.bodies)
+    settle(contacts, k, a.joints, a.bodies, a.context)
     status = store_impulses(k, a.bodies, a.context)
     clock.lap("store_impulses")
     if isinstance(clock, StageTimer):

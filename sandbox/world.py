@@ -14,17 +14,20 @@ from typing import NamedTuple
 import numpy as np
 
 import sandbox.orientation as orientation
-from sandbox.body import DYNAMIC, TYPES, Body
+from sandbox.body import DYNAMIC, Body
 from sandbox.contact import ContactBuffers, Manifolds, find_contacts
 from sandbox.context import fill_context
 from sandbox.errors import SimulationError
-from sandbox.forces import MAX_GENERATORS, ForceGenerator
+from sandbox.forces import ForceGenerator
 from sandbox.jit import entry
 from sandbox.projectile import advance_analytic
-from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SPRING
+from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SLEEPING, SPRING
 from sandbox.settings import Settings
 from sandbox.shape_records import Geometry, build_geometry
+from sandbox.sleep import wake_island
 from sandbox.step import fast_step, free_step, soft_step, staged_step
+from sandbox.world_building import Building
+from sandbox.world_measures import Measures
 
 _EULERS = ("semi_implicit_euler", "explicit_euler")
 
@@ -52,7 +55,7 @@ def _field(name: str) -> property:
     return property(get, put, doc=f"Every body's ``{name}`` (a view of the BODY records).")
 
 
-class World:
+class World(Building, Measures):
     """A 2D rigid-body world. SI units, y up, radians counter-clockwise.
 
     ``World(gravity=(0, -9.81), dt=1/60, orientation="complex", solver="iterative", ...)``: any
@@ -68,7 +71,7 @@ class World:
         if not dt > 0:
             raise ValueError("dt: must be > 0")
         self.name = name
-        self.gravity = np.array(gravity, dtype=float)
+        self._gravity = np.array(gravity, dtype=float)
         self.dt = float(dt)
         self.settings = Settings(**settings)
         self.time = 0.0
@@ -80,8 +83,10 @@ class World:
         self._by_name: dict[str, Body] = {}
         self._python_forces: list = []  # force objects without a record: evaluated per step
         self._controlled: list[Body] = []
-        self.state = np.zeros(0, dtype=BODY)
-        self.rot = np.zeros((0, orientation.FLOATS_STORED[self.settings.orientation]))
+        self.state = self._state_store = np.zeros(0, dtype=BODY)
+        self.rot = self._rot_store = np.zeros(
+            (0, orientation.FLOATS_STORED[self.settings.orientation])
+        )
         self.joint_table = np.zeros(0, dtype=JOINT)
         self.generator_table = np.zeros(0, dtype=GENERATOR)
         self.context = np.zeros(1, dtype=CONTEXT)
@@ -99,7 +104,7 @@ class World:
         self._watch_settings()
 
     # --- arrays -------------------------------------------------------------------------------
-    kind = _field("kind")  # DYNAMIC, STATIC or KINEMATIC
+    kind = _field("kind")  # DYNAMIC, STATIC, KINEMATIC or SLEEPING
     com = _field("com")  # centre of mass (m)
     local_com = _field("local_com")  # centre of mass in the body frame (m)
     vel = _field("vel")  # m/s
@@ -116,6 +121,16 @@ class World:
     applied_force = _field("applied_force")  # what the last step applied (N)
     applied_torque = _field("applied_torque")
     ccd = _field("ccd")
+
+    @property
+    def gravity(self) -> np.ndarray:
+        """m/s^2; assign a new vector to change it (the step context is filled again)."""
+        return self._gravity
+
+    @gravity.setter
+    def gravity(self, value) -> None:
+        self._gravity = np.array(value, dtype=float)
+        self._dirty = True
 
     @property
     def orientation_kind(self) -> int:
@@ -150,107 +165,35 @@ class World:
             ctx["contact_count"][0] = ctx["contact_count"][1] = 0
         return b
 
-    # --- building -----------------------------------------------------------------------------
-    def add_body(self, body: Body) -> Body:
-        """Add a body (returned). Names must be unique; an empty name becomes ``body<i>``."""
-        if body.world is not None:
-            raise ValueError(f"body {body.name!r} is already in a world")
-        if not body.name:
-            body.name = f"body{len(self.bodies)}"
-        if body.name in self._by_name:
-            raise ValueError(f"duplicate body name {body.name!r}")
-        i = len(self.state)
-        self.state = np.concatenate([self.state, np.zeros(1, dtype=BODY)])
-        self.rot = np.concatenate([self.rot, np.zeros((1, self.rot.shape[1]))])
-        body.world, body.index = self, i
-        self.bodies.append(body)
-        self._by_name[body.name] = body
-        init, row = body._init, self.state[i]
-        row["kind"] = TYPES[body.type]
-        row["vel"] = init["velocity"]
-        row["omega"] = init["angular_velocity"]
-        row["ccd"] = init["ccd"]
-        row["const_force"], row["const_torque"] = body._constant
-        self._controllers_changed()
-        self._set_angle(i, init["angle"])
-        self._update_mass(body, origin=init["position"])
-        return body
-
-    def add_joint(self, joint):
-        """Add a joint (see :mod:`sandbox.joints`); returned."""
-        joint.attach(self)
-        self.joint_table = np.concatenate([self.joint_table, joint._own])
-        joint.world, joint.index = self, len(self.joint_table) - 1
-        joint.place(self)
-        joint.attached(self)
-        self.joints.append(joint)
-        self._dirty = True
-        return joint
-
-    def add_force(self, generator):
-        """Add a force generator (see :mod:`sandbox.forces`); returned. An object of another
-        kind with ``accumulate(world, p, v, phi, w, f, tau)`` is evaluated once per step."""
-        if hasattr(generator, "attach"):
-            generator.attach(self)
-        if isinstance(generator, ForceGenerator):
-            if len(self.generator_table) >= MAX_GENERATORS:
-                raise ValueError(f"forces: at most {MAX_GENERATORS} force generators")
-            self.generator_table = np.concatenate([self.generator_table, generator._own])
-            generator.world, generator.index = self, len(self.generator_table) - 1
-        else:
-            self._python_forces.append(generator)
-        self.forces.append(generator)
-        self._dirty = True
-        return generator
-
-    def body(self, name: str) -> Body:
-        """The body called ``name`` (KeyError if none)."""
-        try:
-            return self._by_name[name]
-        except KeyError:
-            raise KeyError(f"no body named {name!r}") from None
-
-    def _update_mass(self, body: Body, origin=None) -> None:
-        i = body.index
-        row = self.state[i]
-        if origin is None:
-            origin = np.asarray(body.position, dtype=float)
-        mass, local_com, moment = body.mass_properties()
-        row["local_com"] = local_com
-        c, s = row["cs"]
-        row["com"] = np.asarray(origin, dtype=float) + [
-            c * local_com[0] - s * local_com[1],
-            s * local_com[0] + c * local_com[1],
-        ]
-        if body.type == "dynamic" and not (mass > 0 and moment > 0):
-            # no shapes yet: checked again when stepping
-            row["mass"] = row["moment"] = row["inv_mass"] = row["inv_moment"] = 0.0
-        elif body.type == "dynamic":
-            row["mass"], row["moment"] = mass, moment
-            row["inv_mass"], row["inv_moment"] = 1.0 / mass, 1.0 / moment
-        else:
-            row["mass"] = row["moment"] = np.inf
-            row["inv_mass"] = row["inv_moment"] = 0.0
-        self._geometry = None
-        self._dirty = True
-        self._state_changed()
-
-    def _controllers_changed(self) -> None:
-        self._controlled = [b for b in self.bodies if b.controller is not None]
-
-    def _constants_changed(self) -> None:
-        """Constant forces are applied by the step itself: nothing to remember."""
-
-    def _shapes_changed(self, body: Body) -> None:
-        self._update_mass(body)
+    def _constants_changed(self, i: int | None = None) -> None:
+        """Constant forces are applied by the step itself: only wake the body."""
+        self.wake(i)
 
     def _set_angle(self, i: int, angle: float) -> None:
         self.state[i]["angle"] = float(angle)
         orientation.place_bodies(self.state[i : i + 1], self.rot[i : i + 1], self.orientation_kind)
-        self._state_changed()
+        self._state_changed(i)
 
-    def _state_changed(self) -> None:
+    def _state_changed(self, i: int | None = None) -> None:
+        """Body i (or any body, None) was moved or pushed by the program: wake it."""
         self._analytic_ref = None
+        self.wake(i)
+
+    def wake(self, body=None) -> None:
+        """Wake a sleeping body's island (a Body, its index or its name), or every sleeping
+        body (None). The world does this itself whenever the program moves or pushes a body,
+        or changes a joint, a force, gravity or a setting (:mod:`sandbox.sleep`)."""
+        if not len(self.state):
+            return
+        if body is None:
+            asleep = np.flatnonzero(self.sleeping)
+        else:
+            i = self.body(body).index if isinstance(body, str) else getattr(body, "index", body)
+            asleep = [i] if self.kind[i] == SLEEPING else []
+        for i in asleep:
+            if self.kind[i] == SLEEPING:
+                wake_island(self.state, int(self.state[i]["island"]))
+        self.context[0]["awake"] = -1  # not known (a kinematic body may move): step again
 
     def angles(self) -> np.ndarray:
         """Every body's angle (rad), continuous: turns accumulate."""
@@ -279,12 +222,14 @@ class World:
 
     def _switch_orientation(self, name: str) -> None:
         """Store every body's orientation in representation ``name`` (from its angle)."""
-        self.rot = np.zeros((len(self.state), orientation.FLOATS_STORED[name]))
+        self.rot = self._rot_store = np.zeros((len(self.state), orientation.FLOATS_STORED[name]))
         orientation.place_bodies(self.state, self.rot, orientation.NAMES[name])
 
     def _prepare(self, dt: float) -> None:
         """Bring the records up to date after shapes, masses, joints, forces or settings
         changed (not every step)."""
+        if self._dirty:
+            self.wake()  # a joint, a force, gravity or a setting changed
         if self.rot.shape[1] != orientation.FLOATS_STORED[self.settings.orientation]:
             self._switch_orientation(self.settings.orientation)  # changed without being told
         massless = (self.kind == DYNAMIC) & (self.mass <= 0)
@@ -336,6 +281,11 @@ class World:
             body.controller(body, self)
         if self._python_forces:
             self._python_force_step()
+        if self.context[0]["sleep"] and self.context[0]["awake"] == 0:
+            self.time += dt  # everything sleeps and nothing kinematic moves: nothing to do
+            self.steps += 1
+            self.force[:], self.torque[:] = 0.0, 0.0
+            return
         if self._held:
             self._held = self._buffers.release(1 - int(self.context[0]["contact_set"]))
         status = self._run()
@@ -413,46 +363,6 @@ class World:
             self._prepare(self.dt)
         contacts, self._found_stats = find_contacts(self)
         return contacts
-
-    def kinetic_energy(self) -> float:
-        """Sum of m |v|^2 / 2 + I omega^2 / 2 over dynamic bodies (J)."""
-        dyn = self.kind == DYNAMIC
-        v2 = np.sum(self.vel[dyn] ** 2, axis=1)
-        return float(
-            np.sum(0.5 * self.mass[dyn] * v2 + 0.5 * self.moment[dyn] * self.omega[dyn] ** 2)
-        )
-
-    def potential_energy(self) -> float:
-        """Gravitational -m g . c over dynamic bodies, plus springs' k x^2 / 2 (J)."""
-        dyn = self.kind == DYNAMIC
-        pe = -float(np.sum(self.mass[dyn] * (self.com[dyn] @ self.gravity)))
-        for item in (*self.joints, *self.forces):
-            if hasattr(item, "potential_energy"):
-                pe += item.potential_energy(self)
-        return pe
-
-    def energy(self) -> float:
-        """Kinetic + potential (J)."""
-        return self.kinetic_energy() + self.potential_energy()
-
-    def momentum(self) -> np.ndarray:
-        """Linear momentum sum m v of dynamic bodies (kg m/s)."""
-        dyn = self.kind == DYNAMIC
-        return np.sum(self.mass[dyn, None] * self.vel[dyn], axis=0)
-
-    def angular_momentum(self, about=(0.0, 0.0)) -> float:
-        """L = sum (r x m v + I omega) about a world point (default the origin) (kg m^2/s)."""
-        dyn = self.kind == DYNAMIC
-        r = self.com[dyn] - np.asarray(about, dtype=float)
-        v = self.vel[dyn]
-        m = self.mass[dyn]
-        return float(
-            np.sum(m * (r[:, 0] * v[:, 1] - r[:, 1] * v[:, 0]) + self.moment[dyn] * self.omega[dyn])
-        )
-
-    def orientation_drift(self) -> np.ndarray:
-        """Per-body drift of the stored orientations (0 for scalar angles)."""
-        return orientation.drift_of(self.orientation_kind, self.rot)
 
     def to_scene(self) -> dict:
         """The world as a scene-file dict (current state as the initial state)."""

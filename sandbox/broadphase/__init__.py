@@ -6,7 +6,10 @@ One interface, five swappable strategies (``STRATEGIES``)::
     pairs, pair_tests = find_pairs(name, aabb, static, body)
 
 - ``aabb`` (m, 4) float64 ``[xmin, ymin, xmax, ymax]`` (see :func:`aabb.shape_aabbs`),
-  ``static`` (m,) bool (the shape's body cannot move), ``body`` (m,) int64 owner.
+  ``static`` (m,) bool (the shape's body cannot move), ``body`` (m,) int64 owner. ``static``
+  may also hold integer bit flags: two shapes are left out when their flags share a bit (the
+  step uses 3 for a static body, 1 for a sleeping one and 2 for a moving kinematic one, so a
+  moving kinematic body still meets a sleeping one; see :func:`sandbox.step.label_proxies`).
 - ``pairs`` (k, 2) int64: exactly the shape pairs whose boxes overlap (touching counts),
   ``pairs[:, 0] < pairs[:, 1]``, sorted lexicographically, no duplicates, never two static
   shapes nor two shapes of one body. The list is identical for every strategy, so a simulation
@@ -61,7 +64,7 @@ def _boxes(aabb) -> np.ndarray:
 def _inputs(aabb, static, body):
     box = _boxes(aabb)
     m = len(box)
-    fixed = np.zeros(m, dtype=np.bool_) if static is None else np.asarray(static, dtype=np.bool_)
+    fixed = np.zeros(m, dtype=np.int64) if static is None else np.asarray(static).astype(np.int64)
     owner = np.arange(m, dtype=np.int64) if body is None else np.asarray(body, dtype=np.int64)
     if fixed.shape != (m,) or owner.shape != (m,):
         raise ValueError(f"static and body must have shape ({m},) like aabb")

@@ -115,10 +115,11 @@ def check_tree_options(name: str, capacity: int, max_depth: int) -> tuple[int, i
 
 @njit
 def skip_pair(static: np.ndarray, body: np.ndarray, i: int, j: int) -> bool:
-    """Pairs never reported, decided without an overlap test: one body, or both static."""
+    """Pairs never reported, decided without an overlap test: one body, or both static (two
+    flags sharing a bit: see :mod:`sandbox.broadphase`)."""
     if body[i] == body[j]:
         return True
-    return static[i] and static[j]
+    return (static[i] & static[j]) != 0
 
 
 @njit

@@ -115,7 +115,7 @@ def tested_pairs(proxies, axis, tested) -> None:
             q = proxies[r]
             if q["sweep_box"][axis] > hi:
                 break
-            if q["sweep_body"] == p["sweep_body"] or (p["sweep_fixed"] and q["sweep_fixed"]):
+            if q["sweep_body"] == p["sweep_body"] or (p["sweep_fixed"] & q["sweep_fixed"]) != 0:
                 continue
             put_pair(tested, t, p["order"], q["order"])
             t += 1
