@@ -836,10 +836,12 @@ save_figure(fig, OUT / "side_by_side.png", dpi=100)
 LANES = ("iterative", "shock", "pairwise", "pymunk", "soft")  # drawn in this order, soft on top
 views = {"pyramid": (-5.6, 5.6, BASE - 10.4, BASE + 0.6), "chain": (-10.6, 10.6, -1.0, 11.0),
          "heavy chain": (-6.2, 6.2, 3.0, 11.0)}  # fmt: skip
+titles = {"pyramid": "pyramid of base 40: the top ten rows", "chain": "20-link chain",
+          "heavy chain": "10 links and a ball of 100 links' mass"}  # fmt: skip
 for name, view in views.items():
     gif = render_gif([runs[(name, e)]["rec"] for e in LANES], OUT / f"{name.replace(' ', '_')}.gif",
                      fps=8, size_px=360, labels=list(LANES), colors=[COLORS[e] for e in LANES],
-                     view=view)  # fmt: skip
+                     view=view, title=titles[name])  # fmt: skip
     show_gif(gif)
     print(f"wrote {len(runs[(name, 'soft')]['rec'])} frames to {gif.name}")
 
