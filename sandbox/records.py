@@ -260,6 +260,8 @@ CONTEXT = np.dtype(
         ("contact_count", I8, 2),  # how many contacts each set holds
         ("need", I8),  # > 0: the pair buffer needs this many rows (nothing was changed)
         ("diverged", I8),  # the first body whose state stopped being finite, else -1
+        ("energy_limit", F8),  # J: a closed system's KE + PE_gravity above this diverged
+        ("energy", F8),  # J: KE + PE_gravity when that check last ran
         ("awake", I8),  # sleep: bodies awake after the last step (dynamic, not sleeping)
     ],
     align=True,

@@ -37,6 +37,7 @@ import numpy as np
 
 from sandbox.broadphase.aabb import proxy_boxes, sort_pairs_into
 from sandbox.broadphase.sap import sweep
+from sandbox.energy_growth import closed_energy
 from sandbox.integrators import (
     clear_forces,
     gather_forces,
@@ -141,8 +142,9 @@ def warm_start_all(contacts, k: int, joints, bodies, context) -> None:
 @njit
 def store_impulses(k: int, bodies, context) -> int:
     """Stage 11: the set just written holds the next step's warm-start source; report the
-    first body whose state is not finite (``ctx["diverged"]``, -1 when none). Returns 0, or 1
-    plus that body's index."""
+    first body whose state is not finite, or, in a closed system whose energy grew by orders
+    of magnitude (:mod:`sandbox.energy_growth`), the body moving fastest (``ctx["diverged"]``,
+    -1 when none). Returns 0, or 1 plus that body's index."""
     ctx = context[0]
     cur = 1 - ctx["contact_set"]
     ctx["contact_set"] = cur
@@ -155,6 +157,16 @@ def store_impulses(k: int, bodies, context) -> int:
         if not np.isfinite(s):
             ctx["diverged"] = i
             return 1 + i
+    if ctx["energy_limit"] < np.inf:
+        ctx["energy"] = closed_energy(bodies, ctx["gravity"][0], ctx["gravity"][1])
+        if ctx["energy"] > ctx["energy_limit"]:
+            fastest, top = 0, -1.0
+            for i in range(bodies.shape[0]):
+                v2 = bodies[i]["vel"][0] ** 2 + bodies[i]["vel"][1] ** 2
+                if bodies[i]["inv_mass"] > 0.0 and v2 > top:
+                    fastest, top = i, v2
+            ctx["diverged"] = fastest
+            return 1 + fastest
     return 0
 
 

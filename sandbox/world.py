@@ -17,6 +17,7 @@ import sandbox.orientation as orientation
 from sandbox.body import DYNAMIC, Body
 from sandbox.contact import ContactBuffers, Manifolds, find_contacts
 from sandbox.context import fill_context
+from sandbox.energy_growth import energy_limit
 from sandbox.errors import SimulationError
 from sandbox.forces import ForceGenerator
 from sandbox.jit import entry
@@ -96,6 +97,7 @@ class World(Building, Measures):
         self._found_stats: dict | None = None
         self._analytic_ref = None
         self._dirty = True  # shapes, masses, joints, forces or settings changed: _prepare()
+        self._energy_stale = True  # the closed-system energy bound must be taken again
         self._fast = False
         self._step_dt = 0.0  # the dt the step context holds
         self._held = False  # a Manifolds view of the contact buffers was handed out
@@ -182,7 +184,9 @@ class World(Building, Measures):
     def wake(self, body=None) -> None:
         """Wake a sleeping body's island (a Body, its index or its name), or every sleeping
         body (None). The world does this itself whenever the program moves or pushes a body,
-        or changes a joint, a force, gravity or a setting (:mod:`sandbox.sleep`)."""
+        or changes a joint, a force, gravity or a setting (:mod:`sandbox.sleep`). The energy
+        bound of a closed system is taken again (:mod:`sandbox.energy_growth`)."""
+        self._energy_stale = True
         if not len(self.state):
             return
         if body is None:
@@ -264,6 +268,7 @@ class World(Building, Measures):
         fill_context(self.context[0], self.settings, self.gravity, dt)
         self._step_dt = dt
         self._dirty = False
+        self._energy_stale = True
         self._choose_path()
 
     # --- the step -----------------------------------------------------------------------------
@@ -288,6 +293,9 @@ class World(Building, Measures):
             return
         if self._held:
             self._held = self._buffers.release(1 - int(self.context[0]["contact_set"]))
+        if self._energy_stale:  # a state the program set: the closed system's energy bound
+            self.context[0]["energy_limit"] = energy_limit(self)
+            self._energy_stale = bool(np.any(self.force) or np.any(self.torque))
         status = self._run()
         while status < 0:  # the pair buffer was too small: nothing moved yet
             self._buffers.reserve(-status)
@@ -327,9 +335,11 @@ class World(Building, Measures):
             )
 
     def _divergence(self, i: int) -> SimulationError:
-        """The error for body i, whose state stopped being finite, with a likely cause."""
+        """The error for body i, whose state stopped being finite or which moves fastest in a
+        closed system whose energy grew by orders of magnitude, with a likely cause."""
         from sandbox.divergence import likely_cause
 
+        self._energy_stale = True  # a program that catches the error may set a new state
         return SimulationError(self.bodies[i].name, self.steps, likely_cause(self, i))
 
     # --- observation --------------------------------------------------------------------------
