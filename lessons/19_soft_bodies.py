@@ -31,7 +31,7 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
-from sandbox import Body, Box, Circle, World
+from sandbox import Body, Box, Circle, SimulationError, World
 from sandbox.joints import SpringJoint
 from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.recording import record
@@ -64,7 +64,11 @@ G = 9.81
 # $$k \le k_{max} = \frac{2m}{\Delta t^2} = 2 \times 0.04 \times 60^2 = 288\ \text{N/m}.$$
 #
 # A stiffer spring does not just oscillate wrongly: its energy grows by a factor every step
-# and the body explodes. Runs at 95% and 105% of $k_{max}$:
+# and the body explodes, unless something stops it. The engine does: a closed system (no
+# motor, thruster or outside force) whose energy passes a million times the energies it started
+# with has diverged, and the run stops with `sandbox.SimulationError`, naming the body and a
+# likely cause, while its numbers are still finite. Runs of 60 steps at 95% and 105% of
+# $k_{max}$:
 
 
 # %%
@@ -79,15 +83,23 @@ def pair(k: float, stretch: float = 0.02) -> World:
 
 
 def pair_run(k: float, steps: int) -> tuple[np.ndarray, np.ndarray]:
-    """Time and (length - L) of the pair; energies relative to the start."""
+    """(length - L) of the pair and its energy relative to the start, step by step, up to
+    ``steps`` or the step at which the engine stopped a diverging run (``stopped[k]``)."""
     world = pair(k)
     e0, x, e = world.energy(), [], []
     for _ in range(steps):
-        world.step()
+        try:
+            world.step()
+        except SimulationError as error:
+            stopped[k] = error
+            break
         pa, pb = np.array(world.bodies[0].position), np.array(world.bodies[1].position)
         x.append(np.linalg.norm(pb - pa) - SPACING)
         e.append(world.energy() / e0)
     return np.array(x), np.array(e)
+
+
+stopped: dict[float, SimulationError] = {}
 
 
 K_MAX = 2 * PARTICLE / DT**2
@@ -109,13 +121,16 @@ print_table(
       2 * math.pi * DT / math.acos(1 - w_dt**2 / 2)),
      ("k_max = 2 m / dt^2 (N/m)", K_MAX),
      ("energy after 1 s at 0.95 k_max (x start)", f"{stable[0.95][-1]:.3f}"),
-     ("energy after 1 s at 1.05 k_max (x start)", f"{stable[1.05][-1]:.3e}")],
+     ("largest energy at 1.05 k_max (x start)", f"{stable[1.05].max():.3e}"),
+     ("steps before the engine stopped the 1.05 k_max run", len(stable[1.05]))],
 )  # fmt: skip
+print(f"SimulationError: {stopped[1.05 * K_MAX]}")
 
 # %% [markdown]
 # Below the limit the energy stays bounded: it swings, up to $1/(1 - \omega\Delta t/2) = 40$
 # times its start at 95% of $k_{max}$ (lesson 01's shadow energy), but no further; at 5% above
-# the limit it grows every step. In a soft body every particle has several springs, so the stiffest *mode*
+# the limit it grows every step, about 2.4 times, until the engine stops the run (the table,
+# and the error it printed). In a soft body every particle has several springs, so the stiffest *mode*
 # of the whole mesh is faster than one spring's and the safe stiffness is lower still; stiff
 # soft bodies are why engines take substeps (Box2D v3's soft step, lesson 16) or integrate
 # springs implicitly.
@@ -268,7 +283,9 @@ for frac in (0.95, 1.05):
 fig, axes = plt.subplots(1, 3, figsize=(16, 4.6))
 ax = axes[0]
 for frac, color in ((0.95, "C0"), (1.05, "C3")):
-    ax.semilogy(DT * np.arange(1, 61), stable[frac], color=color, label=f"k = {frac} k_max")
+    ax.semilogy(DT * np.arange(1, len(stable[frac]) + 1), stable[frac], color=color,
+                label=f"k = {frac} k_max" + (" (stopped: diverged)" if frac * K_MAX in stopped
+                                               else ""))  # fmt: skip
 ax.set(xlabel="t (s)", ylabel="energy / energy at the start (1)",
        title=f"two particles: k_max = 2 m / dt^2 = {K_MAX:.0f} N/m")  # fmt: skip
 ax = axes[1]
@@ -309,18 +326,21 @@ for frac in (0.95, 1.05):
     b_e1.add_shape(Circle(RADIUS, mass=0.16))
     heavy.add_joint(SpringJoint(a_e1, b_e1, rest_length=SPACING, stiffness=frac * 2 * 0.16 / DT**2))
     e0_e1 = heavy.energy()
-    for _ in range(60):
-        heavy.step()
-    print(
-        f"k = {frac} x {2 * 0.16 / DT**2:.0f} N/m: energy after 1 s x {heavy.energy() / e0_e1:.3g}"
-    )
+    try:
+        for _ in range(60):
+            heavy.step()
+        print(f"k = {frac} x {2 * 0.16 / DT**2:.0f} N/m: energy after 1 s "
+              f"x {heavy.energy() / e0_e1:.3g}")  # fmt: skip
+    except SimulationError:
+        print(f"k = {frac} x {2 * 0.16 / DT**2:.0f} N/m: stopped as diverged at step {heavy.steps}")
 
 # %% [markdown]
 # <details><summary>Answer</summary>
 #
 # $k_{max} = 2m/\Delta t^2$ grows with the mass: $2 \times 0.16 \times 3600 = 1152$ N/m, four
 # times 288. The run behaves exactly as with the light pair at 95% and 105% of its own limit
-# (the same $\omega\Delta t$): bounded, then exploding. Heavier particles tolerate stiffer
+# (the same $\omega\Delta t$): bounded, then exploding, stopped at the same step. Heavier
+# particles tolerate stiffer
 # springs; halving $\Delta t$ would raise the limit four times.
 #
 # </details>

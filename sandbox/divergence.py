@@ -1,6 +1,6 @@
 """Why a run diverged: a likely cause for :class:`sandbox.SimulationError`, from the world's
 contents (explicit integration of a spring of stiffness k on a mass m is stable only for
-dt < 2 sqrt(m / k), the period over pi)."""
+dt < 2 sqrt(m / k), the period over pi; between two moving bodies m is the reduced mass)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,8 @@ from sandbox.records import DYNAMIC
 
 
 def stiffest_spring(world) -> tuple[float, float] | None:
-    """(stiffness k, lightest mass m on it) of the spring with the largest k / m, or None."""
+    """(stiffness k, mass m it moves) of the spring with the largest k / m, or None: the
+    reduced mass m_a m_b / (m_a + m_b) when both ends move, else the moving end's mass."""
     best = None
     for joint in world.joints:
         if getattr(joint, "type", "") != "spring":
@@ -20,7 +21,7 @@ def stiffest_spring(world) -> tuple[float, float] | None:
         masses = [world.mass[b.index] for b in (joint.a, joint.b) if b.type == "dynamic"]
         if not masses or joint.stiffness <= 0:
             continue
-        m = min(masses)
+        m = masses[0] * masses[1] / (masses[0] + masses[1]) if len(masses) == 2 else masses[0]
         if best is None or joint.stiffness / m > best[0] / best[1]:
             best = (joint.stiffness, m)
     return best
@@ -35,7 +36,7 @@ def likely_cause(world, i: int) -> str:
         limit = 2.0 * math.sqrt(m / k)
         if dt > 0.5 * limit:
             return (
-                f"spring stiffness too high for dt: a spring of {k:g} N/m on {m:g} kg needs "
+                f"spring stiffness too high for dt: a spring of {k:g} N/m moving {m:g} kg needs "
                 f"dt < {limit:.3g} s; try dt <= {0.25 * limit:.3g} s or a softer spring"
             )
     g = float(np.hypot(*world.gravity))
