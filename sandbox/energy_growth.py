@@ -33,7 +33,7 @@ SPEED_FLOOR = 1.0  # m/s: the scale counts every body as moving at least this fa
 @njit
 def closed_energy(bodies, gx: float, gy: float) -> float:
     """KE + PE_gravity of the dynamic bodies, awake or asleep (J): sum of m |v|^2 / 2 +
-    I omega^2 / 2 - m g . c (slides, "Energy")."""
+    I omega^2 / 2 - m g . c (as :meth:`sandbox.world.World.energy`, without the springs)."""
     e = 0.0
     for i in range(bodies.shape[0]):
         b = bodies[i]

@@ -46,7 +46,7 @@ BODY = np.dtype(
         ("torque", F8),  # N m, likewise
         ("const_force", V2),  # applied every step (N)
         ("const_torque", F8),  # N m
-        ("applied_force", V2),  # what forces other than gravity and contacts gave last step (N)
+        ("applied_force", V2),  # last step's forces besides gravity, generators, contacts (N)
         ("applied_torque", F8),  # N m, likewise
         ("generators", np.uint64),  # bit g set: force generator g acts on this body
         ("ccd", np.bool_),  # continuous collision (time of impact) for this body

@@ -2,7 +2,7 @@
 advancement (slides, "Conservative Advancement": estimate the time of impact before the
 collision happens and move only that far).
 
-Shapes are given like the world's shape arrays (``docs/architecture.md``): ``kind`` 0 circle /
+Shapes are given as tuples (:func:`shape_of` makes one from a SHAPE record): ``kind`` 0 circle /
 1 polygon, ``radius``, ``center`` (circle centre) and ``verts`` (CCW polygon vertices, an empty
 (0, 2) array for circles), all relative to the body's centre of mass in the body frame. A pose
 is the centre of mass position (m) and the angle (rad). Over a step the pose moves linearly

@@ -80,7 +80,7 @@ class World(Building, Measures):
         self.bodies: list[Body] = []
         self.joints: list = []
         self.forces: list = []
-        self.timer = None  # a sandbox.step.StageTimer: time every stage (the staged path)
+        self._timer = None  # a sandbox.step.StageTimer: time every stage (the staged path)
         self._by_name: dict[str, Body] = {}
         self._python_forces: list = []  # force objects without a record: evaluated per step
         self._controlled: list[Body] = []
@@ -270,6 +270,18 @@ class World(Building, Measures):
         self._dirty = False
         self._energy_stale = True
         self._choose_path()
+
+    @property
+    def timer(self):
+        """A :class:`sandbox.step.StageTimer` that times every stage of each step (the world
+        then takes the staged path), or None (the default: the fastest path)."""
+        return self._timer
+
+    @timer.setter
+    def timer(self, value) -> None:
+        self._timer = value
+        if not self._dirty:  # already prepared: take the path the timer asks for now
+            self._choose_path()
 
     # --- the step -----------------------------------------------------------------------------
     def step(self, dt: float | None = None) -> None:

@@ -89,3 +89,17 @@ def test_switches_take_the_compiled_step_too(switches):
     staged.timer = StageTimer()
     run(fast, 40), run(staged, 40)
     assert same_state(fast, staged)
+
+
+def test_a_timer_set_after_the_first_step_times_the_next_ones():
+    # the world takes the staged path as soon as a timer is set, prepared or not
+    from sandbox import Body, Circle, World
+    from sandbox.step import StageTimer
+
+    w = World()
+    w.add_body(Body("b")).add_shape(Circle(0.5))
+    w.step()
+    w.timer = StageTimer()
+    w.step()
+    w.step()
+    assert w.timer.steps == 2

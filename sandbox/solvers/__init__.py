@@ -8,8 +8,8 @@ Resolution"), all over the same CONTACT and JOINT records (:mod:`sandbox.records
   stages differ enough to be a sequence of their own (:mod:`sandbox.solvers.soft`,
   ``sandbox.step.soft_step``).
 
-Each module offers ``solve(contacts, k, joints, bodies, context)``, the step's ``solve`` stage
-(:mod:`sandbox.step`); what they share is in :mod:`sandbox.solvers.common`.
+Each module but ``soft`` offers ``solve(contacts, k, joints, bodies, context)``, the step's
+``solve`` stage (:mod:`sandbox.step`); what they share is in :mod:`sandbox.solvers.common`.
 """
 
 from __future__ import annotations
