@@ -51,7 +51,7 @@ def test_a_large_scene_compiles_and_says_so(monkeypatch):
     monkeypatch.delenv("SANDBOX_JIT", raising=False)
     monkeypatch.setattr(first_run, "engine_imported", lambda: False)  # a fresh command
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
-    first_run.choose_engine_speed({"bodies": [{}] * 56}, 120)  # 6,720 body-steps
+    first_run.choose_engine_speed({"bodies": [{}] * 210}, 120)  # pyramid 20: 25,200
     assert "SANDBOX_JIT" not in os.environ
     assert notes and "compiling the engine" in notes[0]
 
