@@ -55,8 +55,9 @@ def deviation_figure(result: ComparisonResult, path: Path) -> None:
                 continue
             for j, i in enumerate(result.moving):
                 name = result.names[i] if len(labels) == 1 else f"{result.names[i]} ({lab})"
-                ax.plot(t, data[lab][:, j], styles[k % 4], color=f"C{j % 10}", linewidth=1.0,
-                        label=name)  # fmt: skip
+                ax.plot(
+                    t, data[lab][:, j], styles[k % 4], color=f"C{j % 10}", linewidth=1.0, label=name
+                )
         # log scale above ROUNDING, linear below: rounding differences (1e-14) show as 0, not as
         # data on a log axis reaching down to 1e-23
         ax.set_yscale("symlog", linthresh=ROUNDING)

@@ -45,6 +45,17 @@ def closed_energy(bodies, gx: float, gy: float) -> float:
     return e
 
 
+@njit
+def fastest_body(bodies) -> int:
+    """The index of the fastest body that forces move (the one a diverged run names)."""
+    fastest, top = 0, -1.0
+    for i in range(bodies.shape[0]):
+        v2 = bodies[i]["vel"][0] ** 2 + bodies[i]["vel"][1] ** 2
+        if bodies[i]["inv_mass"] > 0.0 and v2 > top:
+            fastest, top = i, v2
+    return fastest
+
+
 def is_closed(world) -> bool:
     """Whether nothing in ``world`` does work on it from outside (see the module)."""
     state = world.state

@@ -37,7 +37,7 @@ import numpy as np
 
 from sandbox.broadphase.aabb import proxy_boxes, sort_pairs_into
 from sandbox.broadphase.sap import sweep
-from sandbox.energy_growth import closed_energy
+from sandbox.energy_growth import closed_energy, fastest_body
 from sandbox.integrators import (
     clear_forces,
     gather_forces,
@@ -160,13 +160,8 @@ def store_impulses(k: int, bodies, context) -> int:
     if ctx["energy_limit"] < np.inf:
         ctx["energy"] = closed_energy(bodies, ctx["gravity"][0], ctx["gravity"][1])
         if ctx["energy"] > ctx["energy_limit"]:
-            fastest, top = 0, -1.0
-            for i in range(bodies.shape[0]):
-                v2 = bodies[i]["vel"][0] ** 2 + bodies[i]["vel"][1] ** 2
-                if bodies[i]["inv_mass"] > 0.0 and v2 > top:
-                    fastest, top = i, v2
-            ctx["diverged"] = fastest
-            return 1 + fastest
+            ctx["diverged"] = fastest_body(bodies)
+            return 1 + ctx["diverged"]
     return 0
 
 
