@@ -46,7 +46,7 @@ from sandbox.lessonkit import output_dir, print_table, save_figure, show_gif
 from sandbox.pymunk_bridge import PymunkScene
 from sandbox.recording import Recording
 from sandbox.render import render_gif
-from sandbox.solvers.soft import softness
+from sandbox.solvers.soft import MAX_CONTACT_HERTZ_PER_RATE, softness
 
 # knobs
 DT = 1.0 / 60.0  # s, every scene's step
@@ -409,12 +409,14 @@ print_table(["against (a), direct implicit Euler", "max |C - C_(a)| (m)"],
             [(name, f"{np.abs(x - direct).max():.3e}") for name, x in variants.items()])  # fmt: skip
 defaults = sandbox.Settings()
 h_default = DT / defaults.substeps
+# contacts: contact_hertz, but no stiffer than an eighth of the substep rate (section 3)
+contact_f = min(defaults.contact_hertz, MAX_CONTACT_HERTZ_PER_RATE / h_default)
 print_table(
     ["the engine's defaults, h = 1/240 s", "f (Hz)", "zeta", "h omega", "b (1/s)", "s_m", "s_i"],
     [(name, f, z, h_default * 2 * math.pi * f, *softness(f, z, h_default))
-     for name, f, z in (("contact, two moving bodies", defaults.contact_hertz,
+     for name, f, z in (("contact, two moving bodies (capped)", contact_f,
                          defaults.contact_damping_ratio),
-                        ("contact with a static body", 2 * defaults.contact_hertz,
+                        ("contact with a static body", 2 * contact_f,
                          defaults.contact_damping_ratio),
                         ("joint", defaults.joint_hertz, defaults.joint_damping_ratio))],
 )  # fmt: skip
@@ -533,15 +535,16 @@ print_table(["masses (kg)", "soft settings", "hook joint: F/(m w^2) (mm)", "meas
 #    clear is $S$ times smaller.
 # 3. **The stiffness it can afford grows with the substep rate.** An implicit spring is stable
 #    at any stiffness, but one pass per substep only approximates the coupled system; the engine
-#    caps `contact_hertz` at a quarter of the substep rate, $f \le 1/(4h) = S/(4\Delta t)$
-#    (15 Hz per substep at 60 steps per second; Box2D does the same). The static error
+#    caps `contact_hertz` at an eighth of the substep rate, $f \le 1/(8h) = S/(8\Delta t)$
+#    (7.5 Hz per substep at 60 steps per second, as Box2D since v3.1; at a quarter, Box2D
+#    v3.0's cap, a tall pyramid rings: section 6). The static error
 #    $F/(m\omega^2)$ falls as $1/f^2$, so at the cap as $1/S^2$; the iterative solver's sag falls
 #    as $1/N$ (lesson 09).
 #
 # Measured on the pyramid of base 20 (210 boxes): the largest drop of its top box in 1.5 s (the
 # soft pyramid rings a little in its first second, so not just the last value) under the
 # iterative solver with $N$ = 5, 10, 20, 40 sweeps and under the soft step with $S$ = 2, 4, 8,
-# 16 substeps, `contact_hertz` at its cap $15\,S$ Hz; the cost is the median time per step on
+# 16 substeps, `contact_hertz` at its cap $7.5\,S$ Hz; the cost is the median time per step on
 # this machine.
 
 # %%
@@ -551,10 +554,10 @@ cost_scene = pyramid(COST_BASE)
 cost = {("iterative", n): simulate(cost_scene, "iterative", COST_SECONDS, top_box(cost_scene),
                                    iterations=n) for n in SWEEPS}  # fmt: skip
 cost |= {("soft", s): simulate(cost_scene, "soft", COST_SECONDS, top_box(cost_scene),
-                               substeps=s, contact_hertz=15.0 * s) for s in SUBSTEPS}  # fmt: skip
+                               substeps=s, contact_hertz=7.5 * s) for s in SUBSTEPS}  # fmt: skip
 print_table(["solver", "sweeps N or substeps S", "contact_hertz (Hz)", "ms per step",
              f"largest top drop in {COST_SECONDS:g} s (mm)"],
-            [(solver, n, 15.0 * n if solver == "soft" else "-", r["ms"], 1000 * r["value"][0].max())
+            [(solver, n, 7.5 * n if solver == "soft" else "-", r["ms"], 1000 * r["value"][0].max())
              for (solver, n), r in cost.items()], 3)  # fmt: skip
 
 # %%
@@ -594,7 +597,7 @@ save_figure(fig, OUT / "substeps_vs_iterations.png", dpi=100)
 # accumulated impulse shrinks (never below zero) and takes that speed back, so the next substep
 # starts from velocities without it. The engine has no switch to turn relax off, so we take the soft step
 # apart: one disc resting on the ground, the ground contact alone, in 20 lines of Python with
-# the engine's `softness` (twice `contact_hertz` against a static body, $\zeta$ = 10, 4
+# the engine's `softness` (twice the capped `contact_hertz` against a static body, $\zeta$ = 10, 4
 # substeps), warm starting, the biased solve, the move and the relax. With the position pass
 # off, it must reproduce the engine's disc exactly; then we drop the relax from it.
 
@@ -604,7 +607,7 @@ SUB, ZETA_CONTACT, MAX_PUSH = (
     defaults.contact_damping_ratio,
     defaults.max_push_speed,
 )
-HERTZ_STATIC = 2 * defaults.contact_hertz  # Hz: against a static body, twice as stiff
+HERTZ_STATIC = 2 * contact_f  # Hz: against a static body, twice as stiff (capped, section 3)
 OVERLAP = 0.02  # m, how deep the disc starts in the ground
 
 

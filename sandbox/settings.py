@@ -150,7 +150,7 @@ class Settings:
     contact_hertz: float = _setting(
         60.0,
         "number",
-        "stiffness of soft contacts, as a frequency, at most a quarter of the substep rate "
+        "stiffness of soft contacts, as a frequency, at most an eighth of the substep rate "
         "(solver: soft; contacts with a static body twice as stiff)",
         _HERTZ,
         gt=0.0,
