@@ -43,7 +43,8 @@ test: $(STAMP)
 # out-of-bounds index in a kernel fails a test instead of corrupting memory
 test-bounds: $(STAMP)
 	NUMBA_BOUNDSCHECK=1 NUMBA_CACHE_DIR=$(CURDIR)/.numba-boundscheck \
-		$(BIN)/python -m pytest -q -p no:cacheprovider tests/test_settings_change.py
+		$(BIN)/python -m pytest -q -p no:cacheprovider tests/test_settings_change.py \
+		tests/test_contact_robustness.py
 
 lint: $(DEV_STAMP)
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .
