@@ -9,7 +9,8 @@ contacts reduced to at most two points).
    the other one is clearly better, so near-ties do not flip the face from step to step.
 3. Incident edge: the edge of the other polygon whose normal is most anti-parallel.
 4. When the polygons are apart by more than a small slop (speculative contacts), the closest
-   features may be two vertices; then a single point with the vertex-to-vertex normal is used.
+   features may be two vertices; then a single point with the vertex-to-vertex normal is used
+   (not for a vertex pair straight across the reference face: parallel faces are clipped).
 5. Clipping: the incident edge is clipped to the side planes of the reference face, which leaves
    at most two points; each point's depth is its distance below the reference face, and the
    reported point lies midway between the two surfaces.
@@ -31,6 +32,7 @@ RELATIVE_TOL = 0.98  # the other face must be better than 0.98 x the preferred s
 ABSOLUTE_TOL = 0.1 * LINEAR_SLOP  # ... plus this much (m), to take over as reference face
 VERTEX_TOL = 0.1 * LINEAR_SLOP  # apart by more than this (m): look for vertex-vertex contact
 MERGE_TOL = 1e-9  # m: two clipped points closer than this are one point
+ACROSS_TOL = 1e-9  # m: a vertex pair offset sideways by less than this lies straight across
 FEATURE_B_REFERENCE = 1 << 32
 FEATURE_VERTEX_VERTEX = 2 << 32
 
@@ -147,14 +149,21 @@ def polygon_polygon(wp, o_a, c_a, o_b, c_b, prefer_a, margin):
             k = i21 if f2 == 0.0 else i22
             wx = wp[o2 + k, 0] - wp[o1 + r, 0]
             wy = wp[o2 + k, 1] - wp[o1 + r, 1]
-            dist = math.sqrt(wx * wx + wy * wy)  # >= the separation > VERTEX_TOL
-            if dist > margin:
-                return none
-            px = 0.5 * (wp[o1 + r, 0] + wp[o2 + k, 0])
-            py = 0.5 * (wp[o1 + r, 1] + wp[o2 + k, 1])
-            fid = FEATURE_VERTEX_VERTEX + (k * 65536 + r if flip else r * 65536 + k)
-            ux, uy = sign * wx / dist, sign * wy / dist
-            return 1, ux, uy, px, py, -dist, fid, 0.0, 0.0, 0.0, 0
+            # Parallel faces apart and face to face (equal boxes stacked with a gap) are
+            # equally close all along their overlap, and the segment distance names one end
+            # of it: a vertex pair straight across the reference face (w x n = 0). That is a
+            # face contact, which the clipping below gives with both ends; one point at one
+            # corner would hold a symmetric stack unevenly and turn it. Only a vertex pair
+            # offset sideways (the vertex lies beyond the face's end) is vertex-vertex.
+            if abs(wx * ny - wy * nx) > ACROSS_TOL:
+                dist = math.sqrt(wx * wx + wy * wy)  # >= the separation > VERTEX_TOL
+                if dist > margin:
+                    return none
+                px = 0.5 * (wp[o1 + r, 0] + wp[o2 + k, 0])
+                py = 0.5 * (wp[o1 + r, 1] + wp[o2 + k, 1])
+                fid = FEATURE_VERTEX_VERTEX + (k * 65536 + r if flip else r * 65536 + k)
+                ux, uy = sign * wx / dist, sign * wy / dist
+                return 1, ux, uy, px, py, -dist, fid, 0.0, 0.0, 0.0, 0
 
     # 5. clip the incident edge to the reference face's side planes; t runs along the face
     tx, ty = -ny, nx
