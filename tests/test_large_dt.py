@@ -58,24 +58,15 @@ def test_boxes_apart_face_to_face_give_two_points():
     np.testing.assert_allclose(m.depth[i], [-1.0, -1.0], atol=1e-12)
 
 
-@pytest.mark.parametrize("settings", [{"solver": "shock"}])
-def test_symmetric_stack_stays_symmetric_at_half_a_second(settings):
-    # exact symmetry: nothing may push a box sideways or turn it. Tolerance 1e-9 m and rad,
-    # rounding only (before the fix: 5e-3 rad after the first step, toppled within 6 steps).
-    # Not with the iterative solver (with or without robust_positions): its position pass
-    # pushes a manifold's points one after the other, which tilts boxes that overlap deeply
-    # (as they do at this dt, see below)
-    w = stack(0.5, **settings)
-    for _ in range(40):
-        w.step()
-        assert np.abs(w.com[1:, 0]).max() < 1e-9
-        assert np.abs(w.state["angle"][1:]).max() < 1e-9
-
-
+@pytest.mark.xfail(
+    strict=True,
+    reason="shock propagation pushes a manifold's two points one after the other, and the "
+    "first push turns the box; solving the two pushes together holds this stack exactly, but "
+    "made the pyramid of 40 rise 17 mm and walk 17 cm in 2 s (lesson 16), so it was not kept",
+)
 def test_shock_solver_holds_the_stack_at_half_a_second():
     # the bar over 20 s (40 steps): every box within 5 cm of x = 0 and of its resting
-    # height, angles under 2 degrees. Shock propagation carries the weight down in one pass,
-    # so the first step, with nothing to warm start from, already holds the stack
+    # height, angles under 2 degrees
     dx, dy, da = worst_over(stack(0.5, solver="shock"), 40)
     assert dx < 0.05 and dy < 0.05 and da < 2.0, (dx, dy, da)
 
@@ -86,7 +77,7 @@ def test_shock_solver_holds_the_stack_at_half_a_second():
     "g dt (no warm start yet; Gauss-Seidel on a chain of 5 converges by cos^2(pi/11) per "
     "sweep), so the boxes sink up to 1.9 m into one another in the first steps; the position "
     "pass, one point after the other, tilts the deeply overlapping boxes and the stack "
-    "topples (also with robust_positions); solver: shock holds it (test above)",
+    "topples (also with robust_positions and with solver: shock, test above)",
 )
 def test_default_solver_holds_the_stack_at_half_a_second():
     dx, dy, da = worst_over(stack(0.5), 40)

@@ -85,30 +85,8 @@ def contact_layers(contacts, k: int, bodies, gap: float = np.inf):
 
 
 @njit
-def two_pushes(k11: float, k12: float, k22: float, b1: float, b2: float):
-    """Pushes x >= 0 at two points with normal speeds v = K x + b >= 0 and x_j v_j = 0 (the
-    block solver's cases: both push, only the first, only the second, neither)."""
-    det = k11 * k22 - k12 * k12
-    if det > 1e-12 * k11 * k22:
-        x1, x2 = -(k22 * b1 - k12 * b2) / det, -(k11 * b2 - k12 * b1) / det
-        if x1 >= 0.0 and x2 >= 0.0:
-            return x1, x2
-    x1 = max(-b1 / k11, 0.0)
-    if x1 > 0.0 and k12 * x1 + b2 >= 0.0:
-        return x1, 0.0
-    x2 = max(-b2 / k22, 0.0)
-    if x2 > 0.0 and k12 * x2 + b1 >= 0.0:
-        return 0.0, x2
-    return 0.0, 0.0
-
-
-@njit
 def push_layer(c, layer, bodies) -> None:
-    """One contact of the shock pass: the lower body frozen (1/m = 1/I = 0), pushes only.
-
-    A two-point manifold's pushes are found together (:func:`two_pushes`): one point after
-    the other, the first push turns the box and leaves the second a different share, so a
-    flat box came out tilted (at a large dt, by degrees)."""
+    """One contact of the shock pass: the lower body frozen (1/m = 1/I = 0), pushes only."""
     a, b = c["a"], c["b"]
     nx, ny = c["normal"][0], c["normal"][1]
     im_a, ii_a, im_b, ii_b = c["inv_mass_a"], c["inv_moment_a"], c["inv_mass_b"], c["inv_moment_b"]
@@ -118,36 +96,20 @@ def push_layer(c, layer, bodies) -> None:
         im_b = ii_b = 0.0
     mass = (im_a, ii_a, im_b, ii_b)
     va, vb = velocity_of(bodies, a), velocity_of(bodies, b)
-    rn_a, rn_b, kn, target = [0.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]
     for j in range(c["count"]):
         p = c["points"][j]
         ra, rb = arms(p)
-        rn_a[j], rn_b[j] = cross(ra[0], ra[1], nx, ny), cross(rb[0], rb[1], nx, ny)
-        kn[j] = effective_mass(im_a, ii_a, im_b, ii_b, rn_a[j], rn_b[j])
-        target[j] = normal_speed(va, vb, p, nx, ny) - p["bias"]  # b_j: < 0 needs a push
-    pushes = [0.0, 0.0]
-    if c["count"] == 2 and kn[0] > 0.0 and kn[1] > 0.0:
-        k12 = im_a + im_b + ii_a * rn_a[0] * rn_a[1] + ii_b * rn_b[0] * rn_b[1]
-        pushes[0], pushes[1] = two_pushes(kn[0], k12, kn[1], target[0], target[1])
-    for j in range(c["count"]):
-        p = c["points"][j]
-        if kn[j] <= 0.0:
+        kn = effective_mass(
+            im_a, ii_a, im_b, ii_b, cross(ra[0], ra[1], nx, ny), cross(rb[0], rb[1], nx, ny)
+        )
+        if kn <= 0.0:
             continue
-        if c["count"] == 1:  # one point: its own speed, as before
-            pushes[j] = max((p["bias"] - normal_speed(va, vb, p, nx, ny)) / kn[j], 0.0)
-        dp = pushes[j]
+        dp = max((p["bias"] - normal_speed(va, vb, p, nx, ny)) / kn, 0.0)
         if dp == 0.0:
             continue
-        ra, rb = arms(p)
         p["bounce_impulse"] += dp
         va, vb = exchange(va, vb, mass, ra, rb, dp * nx, dp * ny)
-    for j in range(c["count"]):
-        dp = pushes[j]
-        if dp == 0.0:
-            continue
         # friction against the same frozen body, at most mu dp
-        p = c["points"][j]
-        ra, rb = arms(p)
         kt = effective_mass(
             im_a, ii_a, im_b, ii_b, cross(ra[0], ra[1], ny, -nx), cross(rb[0], rb[1], ny, -nx)
         )
