@@ -94,7 +94,7 @@ def block_normal(c, va, vb):
     nx, ny = c["normal"][0], c["normal"][1]
     p0, p1 = c["points"][0], c["points"][1]
     a1, a2 = p0["normal_impulse"], p1["normal_impulse"]
-    k11, k22, k12 = 1.0 / p0["normal_mass"], 1.0 / p1["normal_mass"], c["k12"]
+    k11, k12, k22 = c["block_k"][0], c["block_k"][1], c["block_k"][2]
     m11, m12, m22 = c["block_mass"][0], c["block_mass"][1], c["block_mass"][2]
     # b: the normal speed each point would have without the impulses applied so far, minus bias
     b1 = normal_speed(va, vb, p0, nx, ny) - p0["bias"] - (k11 * a1 + k12 * a2)
