@@ -125,7 +125,8 @@ CONTACT = np.dtype(
         ("inv_mass_b", F8),
         ("inv_moment_b", F8),
         ("use_block", np.bool_),  # two points solved together (block solver)
-        ("k12", F8),  # off-diagonal of the 2x2 effective mass matrix K
+        ("block_k", F8, 3),  # the 2x2 effective mass matrix K as the block solver reads it:
+        # (1 / normal_mass of point 0, k12, 1 / normal_mass of point 1)
         ("block_mass", F8, 3),  # K^-1 as (m11, m12, m22)
         ("points", CONTACT_POINT, 2),
         ("shape_a", I8),

@@ -100,7 +100,12 @@ def prepare_block(c) -> None:
     det = k11 * k22 - k12 * k12
     if k11 * k11 < BLOCK_CONDITION * det:
         c["use_block"] = True
-        c["k12"] = k12
+        # the diagonal as the sweeps would find it from normal_mass, worked out once a step
+        c["block_k"][0], c["block_k"][1], c["block_k"][2] = (
+            1.0 / p0["normal_mass"],
+            k12,
+            1.0 / p1["normal_mass"],
+        )
         c["block_mass"][0], c["block_mass"][1], c["block_mass"][2] = (
             k22 / det,
             -k12 / det,
