@@ -98,6 +98,7 @@ class World(Building, Measures):
         self._analytic_ref = None
         self._dirty = True  # shapes, masses, joints, forces or settings changed: _prepare()
         self._energy_stale = True  # the closed-system energy bound must be taken again
+        self._sleep = False
         self._fast = False
         self._step_dt = 0.0  # the dt the step context holds
         self._held = False  # a Manifolds view of the contact buffers was handed out
@@ -269,6 +270,7 @@ class World(Building, Measures):
         self._step_dt = dt
         self._dirty = False
         self._energy_stale = True
+        self._sleep = bool(self.settings.sleep)  # a plain bool: read every step
         self._choose_path()
 
     @property
@@ -298,7 +300,7 @@ class World(Building, Measures):
             body.controller(body, self)
         if self._python_forces:
             self._python_force_step()
-        if self.context[0]["sleep"] and self.context[0]["awake"] == 0:
+        if self._sleep and self.context[0]["awake"] == 0:
             self.time += dt  # everything sleeps and nothing kinematic moves: nothing to do
             self.steps += 1
             self.force[:], self.torque[:] = 0.0, 0.0
