@@ -122,9 +122,10 @@ def _compile_first() -> None:
 def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     """Run the lessons, ``jobs`` at a time; one line per lesson, in course order.
 
-    The first lesson runs alone: on a fresh install it compiles the engine's kernels into
-    numba's cache, which the lessons after it load instead of each compiling them again at the
-    same time. Each lesson writes only its own folder, so the outputs do not depend on ``jobs``.
+    The engine is compiled first (:func:`_compile_first`), so that the lessons load its kernels
+    instead of each compiling them at the same time. The longest lessons start first (by the
+    size of their source), so that no core idles at the end waiting on one long lesson. Each
+    lesson writes only its own folder, so the outputs do not depend on ``jobs`` or the order.
     """
     from sandbox.course.runner import Outcome, kernel_specs, run_notebook, run_script
 
@@ -145,7 +146,8 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
             print(f"== {outcome.lesson.stem}: {status} in {outcome.seconds:.1f} s", flush=True)
             return outcome
 
-        outcomes = [report(one(chosen[0]))]
+        longest_first = sorted(chosen, key=lambda lesson: -lesson.path.stat().st_size)
         with ThreadPoolExecutor(max_workers=jobs) as pool:
-            outcomes += [report(outcome) for outcome in pool.map(one, chosen[1:])]
+            running = {lesson.stem: pool.submit(one, lesson) for lesson in longest_first}
+            outcomes = [report(running[lesson.stem].result()) for lesson in chosen]
     return outcomes
