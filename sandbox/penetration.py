@@ -33,6 +33,7 @@ from sandbox.jit import njit
 from sandbox.joints.solve import solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies
+from sandbox.solvers.iterative import visit
 from sandbox.solvers.shock import contact_layers
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
@@ -67,7 +68,7 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float):
         half = (k + 1) // 2
         order = np.empty(k, dtype=np.int64)
         for q in range(k):
-            order[q] = (q >> 1) + (q & 1) * half
+            order[q] = visit(q, half)
         return order, np.zeros(bodies.shape[0], dtype=np.int64)
     layer = contact_layers(contacts, k, bodies, gap)
     key = np.empty(k, dtype=np.int64)

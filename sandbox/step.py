@@ -196,6 +196,17 @@ def settle(contacts, k: int, joints, bodies, context) -> None:
         ctx["awake"] = fall_asleep(contacts, k, joints, bodies, ctx["dt"])
 
 
+@njit
+def finish_step(contacts, k: int, joints, bodies, context) -> int:
+    """The end of every step: count the contact points, clear the forces, let islands at rest
+    fall asleep (:func:`settle`), keep the impulses (:func:`store_impulses`, whose status it
+    returns)."""
+    context[0]["contact_points"] = count_points(contacts, k)
+    clear_forces(bodies)
+    settle(contacts, k, joints, bodies, context)
+    return store_impulses(k, bodies, context)
+
+
 # --- the step, in one compiled call ------------------------------------------------------------
 @njit
 def fast_step(
@@ -220,10 +231,7 @@ def fast_step(
     plan_motion(bodies, ctx["dt"])
     move_bodies(bodies, rot, context)
     fix_positions(contacts, k, joints, bodies, rot, context)
-    ctx["contact_points"] = count_points(contacts, k)
-    clear_forces(bodies)
-    settle(contacts, k, joints, bodies, context)
-    return store_impulses(k, bodies, context)
+    return finish_step(contacts, k, joints, bodies, context)
 
 
 @njit
@@ -282,10 +290,7 @@ def soft_step(
     soft_substeps(contacts, k, model, rot, context, False)
     fix_positions(contacts, k, joints, bodies, rot, context)
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
-    ctx["contact_points"] = count_points(contacts, k)
-    clear_forces(bodies)
-    settle(contacts, k, joints, bodies, context)
-    return store_impulses(k, bodies, context)
+    return finish_step(contacts, k, joints, bodies, context)
 
 
 @njit
@@ -417,10 +422,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     clock.lap("integrate_positions")
     fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
     clock.lap("fix_positions")
-    ctx["contact_points"] = count_points(contacts, k)
-    clear_forces(a.bodies)
-    settle(contacts, k, a.joints, a.bodies, a.context)
-    status = store_impulses(k, a.bodies, a.context)
+    status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
     if timer is not None:
         timer.steps += 1
@@ -439,10 +441,7 @@ def staged_soft(world, found, a, clock) -> int:
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
     clock.lap("restitution")
-    ctx["contact_points"] = count_points(contacts, k)
-    clear_forces(a.bodies)
-    settle(contacts, k, a.joints, a.bodies, a.context)
-    status = store_impulses(k, a.bodies, a.context)
+    status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
     if isinstance(clock, StageTimer):
         clock.steps += 1
