@@ -289,8 +289,9 @@ for solver in ("iterative", "soft"):
             color=COLORS[solver], label=f"{solver}: after 10 s")  # fmt: skip
     bx.plot(LENGTHS, [1000 * pull[(solver, n)]["value"].max() for n in LENGTHS], "o-",
             color=COLORS[solver], label=solver)  # fmt: skip
-ax.plot(HEIGHTS, [1000 * sag[("soft", n)]["value"][0, 300:].max() for n in HEIGHTS], "v:",
-        color=COLORS["soft"], label="soft: largest in the last 5 s")  # fmt: skip
+ax.plot(HEIGHTS, [1000 * sag[("soft", n)]["value"][0, 300:].max() for n in HEIGHTS], "s:",
+        color=COLORS["soft"], markersize=11, markerfacecolor="none",
+        label="soft: largest in the last 5 s (open squares)")  # fmt: skip
 ax.set(xscale="log", yscale="log", xlabel="pyramid base = rows (count)",
        ylabel="top box drop (mm)", title="pyramid: the sag grows with the height")  # fmt: skip
 bx.set(xscale="log", yscale="log", xlabel="links (count)", ylabel="worst link stretch (mm)",
