@@ -1,16 +1,24 @@
 """Free bodies, no collisions: the per-step cost of the world itself (integration and bookkeeping).
 
-    python benchmarks/bench_free.py
+    python benchmarks/bench_free.py [--seconds S]
 
 Prints steps per second for a single ballistic body and for 1,000 free bodies (no shapes
-touching: they are spread far apart and fall under gravity), for each integrator.
+touching: they are spread far apart and fall under gravity), for each integrator, and each
+rate relative to semi-implicit Euler's with the same bodies. The worlds step in alternating
+short blocks (about a millisecond each) so all see the same machine load; each figure is the
+median over its blocks.
 """
 
 from __future__ import annotations
 
+import argparse
+import statistics
 import time
 
 import sandbox
+
+INTEGRATORS = ("explicit_euler", "semi_implicit_euler", "verlet", "rk4")
+BODIES = (1, 1000)
 
 
 def free_world(n: int, integrator: str = "semi_implicit_euler") -> sandbox.World:
@@ -30,24 +38,44 @@ def free_world(n: int, integrator: str = "semi_implicit_euler") -> sandbox.World
     return world
 
 
-def steps_per_second(world: sandbox.World, seconds: float = 1.0) -> float:
-    """Step ``world`` for about ``seconds`` (after a warm-up) and return steps per second."""
-    for _ in range(10):
+def block_rate(world: sandbox.World, steps: int) -> float:
+    """Steps per second over one block of ``steps`` steps."""
+    start = time.perf_counter()
+    for _ in range(steps):
         world.step()
-    count, start = 0, time.perf_counter()
-    while time.perf_counter() - start < seconds:
-        for _ in range(20):
-            world.step()
-        count += 20
-    return count / (time.perf_counter() - start)
+    return steps / (time.perf_counter() - start)
 
 
-def main() -> None:
-    print(f"{'integrator':>20}  {'1 body (steps/s)':>17}  {'1000 bodies (steps/s)':>22}")
-    for integrator in ("explicit_euler", "semi_implicit_euler", "verlet", "rk4"):
-        one = steps_per_second(free_world(1, integrator))
-        many = steps_per_second(free_world(1000, integrator))
-        print(f"{integrator:>20}  {one:17.0f}  {many:22.0f}")
+def measure(seconds: float) -> dict[tuple[str, int], float]:
+    """Median steps per second of every (integrator, bodies) world, stepped in alternating
+    blocks for about ``seconds`` in all."""
+    worlds = {(name, n): free_world(n, name) for name in INTEGRATORS for n in BODIES}
+    steps = {}
+    for key, world in worlds.items():  # compile, then size a block to about a millisecond
+        block_rate(world, 10)
+        steps[key] = max(1, int(1e-3 * block_rate(world, 10)))
+    rates: dict[tuple[str, int], list[float]] = {key: [] for key in worlds}
+    end = time.perf_counter() + seconds
+    while time.perf_counter() < end or min(len(r) for r in rates.values()) < 5:
+        for key, world in worlds.items():
+            rates[key].append(block_rate(world, steps[key]))
+    return {key: statistics.median(r) for key, r in rates.items()}
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=8.0, help="time to measure for (s)")
+    args = parser.parse_args(argv)
+    rate = measure(args.seconds)
+    head = "".join(f"  {f'{n} bodies (steps/s)':>24}" for n in BODIES)
+    print(f"{'integrator':>20}{head}")
+    for name in INTEGRATORS:
+        cells = ""
+        for n in BODIES:
+            ratio = rate[name, n] / rate["semi_implicit_euler", n]
+            cells += f"  {rate[name, n]:14.0f} ({ratio:4.2f}x)"
+        print(f"{name:>20}{cells}")
+    print("(x: relative to semi_implicit_euler with the same bodies, in the same run)")
 
 
 if __name__ == "__main__":
