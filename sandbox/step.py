@@ -381,27 +381,11 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         if npairs < 0:
             return npairs
         clock.lap("find_pairs")
-        k = collide_into(
-            a.buffers.pairs[1],
-            npairs,
-            a.shapes,
-            a.vertices,
-            a.bodies,
-            a.joints,
-            ctx["contact_margin"],
-            contacts,
-        )
+        geometry = (a.shapes, a.vertices, a.bodies, a.joints)
+        k = collide_into(a.buffers.pairs[1], npairs, *geometry, ctx["contact_margin"], contacts)
         if ctx["sleep"] and wake_touched(contacts, k, a.bodies) > 0:
-            k = find_contacts(
-                a.shapes,
-                a.vertices,
-                a.bodies,
-                a.joints,
-                a.buffers.proxies,
-                a.buffers.pairs,
-                contacts,
-                a.context,
-            )
+            buffers = (a.buffers.proxies, a.buffers.pairs)
+            k = find_contacts(*geometry, *buffers, contacts, a.context)
             if k < 0:
                 return k
         clock.lap("collide")
