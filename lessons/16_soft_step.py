@@ -880,8 +880,8 @@ for name, view in views.items():
 #   changes how contacts are solved: for joints it is the iterative solver, its line lies
 #   under the iterative one), pymunk 201 mm, pairwise comes apart.
 # - **heavy chain**: only the soft step keeps it together, 47 mm at worst. Under iterative and
-#   shock it holds until about 3.5 s, then the links part (26 m apart by 10 s); pymunk and
-#   pairwise come apart in the first swing.
+#   shock it holds until about 3.5 s, then the links part (tens of metres apart by 10 s);
+#   pymunk and pairwise come apart in the first swing.
 # - **cost**: on the pyramid all of them take a few ms per step here (the table), the soft step
 #   about as much as the iterative solver and pymunk (within a factor of 1.5).
 #

@@ -122,15 +122,20 @@ CODES = {name: code for code, name in enumerate(NAMES)}
 
 
 @njit
-def accelerations(model, gravity, state, out) -> None:
+def accelerations(model, gravity, state, out, fields: bool) -> None:
     """The time derivative of ``state`` (MOTION records) into ``out``: (v, a, w, alpha) with
     a = g + F / m and alpha = tau / I for dynamic bodies (zero for the others), F and tau every
-    force at that state (:func:`sandbox.forces.accumulate_forces`). ``model``: the world's
-    (bodies, shapes, vertices, joints, generators) records."""
+    force at that state (:func:`sandbox.forces.accumulate_forces`); without ``fields`` (no
+    generator, no spring) that is each body's accumulated force and torque of the step, read
+    in the same pass. ``model``: the world's (bodies, shapes, vertices, joints, generators)
+    records."""
     bodies, shapes, vertices, joints, generators = model
-    accumulate_forces(bodies, shapes, vertices, joints, generators, state, gravity, out)
+    if fields:
+        accumulate_forces(bodies, shapes, vertices, joints, generators, state, gravity, out)
     for i in range(bodies.shape[0]):
         b, d = bodies[i], out[i]
+        if not fields:  # all that accumulate_forces would find
+            d["v"][0], d["v"][1], d["w"] = b["force"][0], b["force"][1], b["torque"]
         d["p"][0], d["p"][1], d["phi"] = state[i]["v"][0], state[i]["v"][1], state[i]["w"]
         if b["kind"] == DYNAMIC:
             d["v"][0] = gravity[0] + d["v"][0] * b["inv_mass"]
@@ -138,6 +143,21 @@ def accelerations(model, gravity, state, out) -> None:
             d["w"] = d["w"] * b["inv_moment"]
         else:
             d["v"][0] = d["v"][1] = d["w"] = 0.0
+
+
+@njit
+def derivative_ahead(model, gravity, fields: bool, state, k1, out) -> None:
+    """The time derivative at a look-ahead ``state`` into ``out`` (:func:`accelerations`), where
+    ``k1`` is the derivative at the step's start. Without state-dependent forces (``fields``
+    False: no generator, no spring) a = g + F / m and alpha = tau / I are the same at every
+    state, so they are k1's (the very same numbers); only (v, w) comes from ``state``."""
+    if fields:
+        accelerations(model, gravity, state, out, True)
+        return
+    for i in range(state.shape[0]):
+        d, y = out[i], state[i]
+        d["p"][0], d["p"][1], d["phi"] = y["v"][0], y["v"][1], y["w"]
+        d["v"][0], d["v"][1], d["w"] = k1[i]["v"][0], k1[i]["v"][1], k1[i]["w"]
 
 
 @njit
@@ -151,20 +171,33 @@ def advanced(y, d, h: float, out) -> None:
         out[i]["w"] = y[i]["w"] + h * d[i]["w"]
 
 
+# the rows of the work arrays of :func:`free_increments` (one MOTION record per body in each),
+# kept by the world from step to step (:func:`work_arrays`): the state y the step starts from,
+# the derivatives k1 ... k4 where the method looks, the state y1 it looks at, the increments
+STATE, K1, K2, K3, K4, AHEAD, INCREMENTS = range(7)
+
+
+def work_arrays(n: int) -> np.ndarray:
+    """The work arrays of :func:`free_increments` for ``n`` bodies: (7, n) MOTION records."""
+    return np.zeros((INCREMENTS + 1, n), dtype=MOTION)
+
+
 @njit
-def free_increments(model, gravity, method: int, dt: float, inc) -> None:
-    """The integrator's increments of one step of free motion for every body, into ``inc``
-    (MOTION records holding dp, dv, dphi, dw), with every force evaluated where the method
-    looks (the slides' formulas, as :func:`explicit_euler` ... :func:`rk4` above)."""
+def free_increments(model, gravity, method: int, dt: float, work, fields: bool) -> None:
+    """The integrator's increments of one step of free motion for every body, into
+    ``work[INCREMENTS]`` (MOTION records holding dp, dv, dphi, dw), with every force evaluated
+    where the method looks (the slides' formulas, as :func:`explicit_euler` ... :func:`rk4`
+    above; ``fields``: whether a force depends on the state, :func:`derivative_ahead`);
+    ``work``: :func:`work_arrays` (nothing is allocated)."""
     bodies = model[0]
     n = bodies.shape[0]
-    y = np.zeros(n, dtype=MOTION)
+    y, k1, k2, k3, k4 = work[STATE], work[K1], work[K2], work[K3], work[K4]
+    y1, inc = work[AHEAD], work[INCREMENTS]
     for i in range(n):
         b = bodies[i]
         y[i]["p"][0], y[i]["p"][1], y[i]["phi"] = b["com"][0], b["com"][1], b["angle"]
         y[i]["v"][0], y[i]["v"][1], y[i]["w"] = b["vel"][0], b["vel"][1], b["omega"]
-    k1 = np.zeros(n, dtype=MOTION)
-    accelerations(model, gravity, y, k1)
+    accelerations(model, gravity, y, k1, fields)
     if method == EXPLICIT_EULER:  # p' = p + v dt, v' = v + a dt, both from the old state
         for i in range(n):
             for k in range(2):
@@ -181,15 +214,14 @@ def free_increments(model, gravity, method: int, dt: float, inc) -> None:
             inc[i]["w"] = k1[i]["w"] * dt
             inc[i]["phi"] = (y[i]["w"] + inc[i]["w"]) * dt
         return
-    y1 = np.zeros(n, dtype=MOTION)
     if method == VERLET:  # p' = p + v dt + a dt^2/2, v' = v + (a + a') dt / 2
-        advanced(y, k1, dt, y1)  # p + v dt, v + a dt (Euler's guess of v')
-        for i in range(n):
+        for i in range(n):  # p' (the new position), v + a dt (Euler's guess of v')
             for k in range(2):
-                y1[i]["p"][k] += 0.5 * k1[i]["v"][k] * dt * dt
-            y1[i]["phi"] += 0.5 * k1[i]["w"] * dt * dt
-        k2 = np.zeros(n, dtype=MOTION)
-        accelerations(model, gravity, y1, k2)
+                y1[i]["p"][k] = y[i]["p"][k] + dt * k1[i]["p"][k] + 0.5 * k1[i]["v"][k] * dt * dt
+                y1[i]["v"][k] = y[i]["v"][k] + dt * k1[i]["v"][k]
+            y1[i]["phi"] = y[i]["phi"] + dt * k1[i]["phi"] + 0.5 * k1[i]["w"] * dt * dt
+            y1[i]["w"] = y[i]["w"] + dt * k1[i]["w"]
+        derivative_ahead(model, gravity, fields, y1, k1, k2)
         for i in range(n):
             for k in range(2):
                 inc[i]["p"][k] = y1[i]["p"][k] - y[i]["p"][k]
@@ -198,13 +230,12 @@ def free_increments(model, gravity, method: int, dt: float, inc) -> None:
             inc[i]["w"] = 0.5 * (k1[i]["w"] + k2[i]["w"]) * dt
         return
     # RK4: k1 = f(y), k2 = f(y + dt/2 k1), k3 = f(y + dt/2 k2), k4 = f(y + dt k3)
-    k2, k3, k4 = np.zeros(n, dtype=MOTION), np.zeros(n, dtype=MOTION), np.zeros(n, dtype=MOTION)
     advanced(y, k1, 0.5 * dt, y1)
-    accelerations(model, gravity, y1, k2)
+    derivative_ahead(model, gravity, fields, y1, k1, k2)
     advanced(y, k2, 0.5 * dt, y1)
-    accelerations(model, gravity, y1, k3)
+    derivative_ahead(model, gravity, fields, y1, k1, k3)
     advanced(y, k3, dt, y1)
-    accelerations(model, gravity, y1, k4)
+    derivative_ahead(model, gravity, fields, y1, k1, k4)
     for i in range(n):  # y' - y = dt/6 (k1 + 2 k2 + 2 k3 + k4)
         for k in range(2):
             inc[i]["p"][k] = (
@@ -296,20 +327,25 @@ def still_or_kinematic(b, dt: float) -> None:
 
 
 @njit
-def integrate_velocities(model, context, dt: float) -> None:
+def integrate_velocities(model, context, dt: float, work) -> None:
     """The velocity stage over a time ``dt`` (the step, or a substep of it): each dynamic
     body's velocity gets the integrator's increment, every force evaluated where the method
-    looks (:func:`free_increments`); its free-motion move is remembered for
-    :func:`plan_motion`. Without state-dependent forces the Euler methods take
-    :func:`integrate_euler`."""
+    looks (:func:`free_increments`, in the :func:`work_arrays` ``work``); its free-motion move
+    is remembered for :func:`plan_motion`. The Euler methods without state-dependent forces
+    take :func:`integrate_euler`; the world then passes ``work=None``, and a compiled step
+    leaves the look-ahead integrators and the force fields out (numba drops the branch)."""
     ctx = context[0]
     bodies, _, _, joints, generators = model
     method = ctx["integrator"]
-    if method <= SEMI_IMPLICIT_EULER and not has_fields(joints, generators):
+    if work is None:
         integrate_euler(bodies, context, dt)
         return
-    inc = np.zeros(bodies.shape[0], dtype=MOTION)
-    free_increments(model, ctx["gravity"], method, dt, inc)
+    fields = has_fields(joints, generators)
+    if method <= SEMI_IMPLICIT_EULER and not fields:
+        integrate_euler(bodies, context, dt)
+        return
+    free_increments(model, ctx["gravity"], method, dt, work, fields)
+    inc = work[INCREMENTS]
     for i in range(bodies.shape[0]):
         b = bodies[i]
         if b["kind"] == DYNAMIC:

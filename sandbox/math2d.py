@@ -91,6 +91,25 @@ def exchange(
 
 
 @njit
+def speed_along(va: tuple, vb: tuple, dx: float, dy: float, rd_a: float, rd_b: float) -> float:
+    """v_r . d, the relative velocity of two material points along a direction d, given
+    rd = r x d for each: (v_b - v_a) . d + w_b (r_b x d) - w_a (r_a x d) (m/s), since
+    (w x r) . d = w (r x d) (slides, "Collision Effects", with :func:`relative_velocity`)."""
+    return (vb[0] - va[0]) * dx + (vb[1] - va[1]) * dy + vb[2] * rd_b - va[2] * rd_a
+
+
+@njit
+def push_along(
+    va: tuple, vb: tuple, mass: tuple, dx: float, dy: float, rd_a: float, rd_b: float, j: float
+) -> tuple[tuple, tuple]:
+    """:func:`exchange` for P = j d, given rd = r x d for each body: r x P = j (r x d)."""
+    im_a, ii_a, im_b, ii_b = mass
+    va = (va[0] - im_a * j * dx, va[1] - im_a * j * dy, va[2] - ii_a * j * rd_a)
+    vb = (vb[0] + im_b * j * dx, vb[1] + im_b * j * dy, vb[2] + ii_b * j * rd_b)
+    return va, vb
+
+
+@njit
 def velocity_of(bodies, i: int) -> tuple[float, float, float]:
     """Body i's (vx, vy, w)."""
     b = bodies[i]

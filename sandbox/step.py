@@ -23,10 +23,12 @@ The stages, in order, each a function named after what it does:
 
 :func:`staged_step` calls the stages one by one from Python, whatever the settings, and can time
 each (``timer``). :func:`fast_step` is the same sequence in one compiled call, for the usual
-world (sweep and prune, the iterative solver, an Euler integrator, no state-dependent forces, no
-continuous collision); each compiled call from Python costs about a microsecond, as much as a
+world (sweep and prune, the iterative or soft solver, no continuous collision; any integrator
+and force generator); each compiled call from Python costs about a microsecond, as much as a
 small world's whole step. Both run the very same stage functions in the same order, so they
-give bit-identical results (``tests/test_step.py``).
+give bit-identical results (``tests/test_step.py``, ``tests/test_step_integrators.py``). The
+look-ahead integrators write into work arrays the world keeps (``work``); an Euler method
+without state-dependent forces gets ``work=None`` and its compiled step leaves them out.
 """
 
 from __future__ import annotations
@@ -41,7 +43,6 @@ from sandbox.energy_growth import closed_energy, fastest_body
 from sandbox.integrators import (
     clear_forces,
     gather_forces,
-    integrate_euler,
     integrate_velocities,
     move_bodies,
     plan_motion,
@@ -210,20 +211,23 @@ def finish_step(contacts, k: int, joints, bodies, context) -> int:
 # --- the step, in one compiled call ------------------------------------------------------------
 @njit
 def fast_step(
-    bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context
+    bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context, work
 ) -> int:
     """The stages of :func:`staged_step` in one compiled call (sweep and prune, the iterative
-    solver, an Euler integrator, no continuous collision). Returns 0, minus the pair rows
+    solver, no continuous collision; any integrator and forces, with ``work`` the integrator's
+    work arrays, or None for an Euler method without state-dependent forces: see
+    :func:`sandbox.integrators.integrate_velocities`). Returns 0, minus the pair rows
     needed when ``pairs`` is too small (nothing changed: grow the buffers and call again), or 1
     plus the index of a body whose state stopped being finite."""
     ctx = context[0]
+    model = (bodies, shapes, vertices, joints, generators)
     contacts, previous = sets[1 - ctx["contact_set"]], sets[ctx["contact_set"]]
     k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
     if k < 0:
         return k
     prepare(contacts, k, previous, bodies, context)
     gather_forces(bodies)
-    integrate_euler(bodies, context, ctx["dt"])
+    integrate_velocities(model, context, ctx["dt"], work)
     prepare_joints(joints, bodies, context)
     warm_start_all(contacts, k, joints, bodies, context)
     iterative.solve(contacts, k, joints, bodies, context)
@@ -235,7 +239,7 @@ def fast_step(
 
 
 @njit
-def soft_substeps(contacts, k: int, model, rot, context, ccd: bool) -> None:
+def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work) -> None:
     """The soft step's substeps (:mod:`sandbox.solvers.soft`; Box2D v3's ``b2SolverStep``):
     each integrates the velocities over h = dt / substeps, warm starts, solves the joints and
     contacts with the soft bias (the joints ``settings.iterations`` times), moves the bodies,
@@ -245,7 +249,7 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool) -> None:
     h = ctx["dt"] / ctx["substeps"]
     joint_soft = softness(ctx["joint_hertz"], ctx["joint_damping_ratio"], h)
     for _ in range(ctx["substeps"]):
-        integrate_velocities(model, context, h)
+        integrate_velocities(model, context, h, work)
         warm_start_joints_soft(joints, bodies)
         if ctx["warm_start"]:
             warm_start(contacts, k, bodies)
@@ -275,7 +279,7 @@ def begin_soft(contacts, k: int, previous, model, context) -> None:
 
 @njit
 def soft_step(
-    bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context
+    bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context, work
 ) -> int:
     """:func:`fast_step` for ``solver: soft``: the pairs and manifolds as always, then the
     soft step's stages (:func:`begin_soft`, :func:`soft_substeps`), the position stage
@@ -287,19 +291,20 @@ def soft_step(
     if k < 0:
         return k
     begin_soft(contacts, k, previous, model, context)
-    soft_substeps(contacts, k, model, rot, context, False)
+    soft_substeps(contacts, k, model, rot, context, False, work)
     fix_positions(contacts, k, joints, bodies, rot, context)
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
     return finish_step(contacts, k, joints, bodies, context)
 
 
 @njit
-def free_step(bodies, rot, shapes, vertices, joints, generators, context) -> int:
+def free_step(bodies, rot, shapes, vertices, joints, generators, context, work) -> int:
     """:func:`fast_step` for a world with fewer than two shapes and no joints (nothing can
     touch anything): the velocities, then the positions. Fewer arrays to hand over: this is
     the whole cost of stepping a single body."""
     gather_forces(bodies)
-    integrate_euler(bodies, context, context[0]["dt"])
+    model = (bodies, shapes, vertices, joints, generators)
+    integrate_velocities(model, context, context[0]["dt"], work)
     plan_motion(bodies, context[0]["dt"])
     move_bodies(bodies, rot, context)
     context[0]["contact_points"] = 0
@@ -376,27 +381,11 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         if npairs < 0:
             return npairs
         clock.lap("find_pairs")
-        k = collide_into(
-            a.buffers.pairs[1],
-            npairs,
-            a.shapes,
-            a.vertices,
-            a.bodies,
-            a.joints,
-            ctx["contact_margin"],
-            contacts,
-        )
+        geometry = (a.shapes, a.vertices, a.bodies, a.joints)
+        k = collide_into(a.buffers.pairs[1], npairs, *geometry, ctx["contact_margin"], contacts)
         if ctx["sleep"] and wake_touched(contacts, k, a.bodies) > 0:
-            k = find_contacts(
-                a.shapes,
-                a.vertices,
-                a.bodies,
-                a.joints,
-                a.buffers.proxies,
-                a.buffers.pairs,
-                contacts,
-                a.context,
-            )
+            buffers = (a.buffers.proxies, a.buffers.pairs)
+            k = find_contacts(*geometry, *buffers, contacts, a.context)
             if k < 0:
                 return k
         clock.lap("collide")
@@ -405,7 +394,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     prepare(contacts, k, previous, a.bodies, a.context)
     clock.lap("prepare_contacts")
     gather_forces(a.bodies)
-    integrate_velocities(model, a.context, ctx["dt"])
+    integrate_velocities(model, a.context, ctx["dt"], a.work)
     clock.lap("integrate_velocities")
     prepare_joints(a.joints, a.bodies, a.context)
     clock.lap("prepare_joints")
@@ -436,7 +425,7 @@ def staged_soft(world, found, a, clock) -> int:
     model = (a.bodies, a.shapes, a.vertices, a.joints, a.generators)
     begin_soft(contacts, k, previous, model, a.context)
     clock.lap("prepare_contacts")
-    soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd)
+    soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd, a.work)
     fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])

@@ -72,6 +72,7 @@ def worlds():
         yield f"{broadphase} broadphase", sample_world(broadphase=broadphase), False
     for integrator in ("explicit_euler", "verlet", "rk4"):
         yield f"{integrator} and forces", with_forces(sample_world(integrator=integrator)), False
+    yield "rk4 and forces, staged", with_forces(sample_world(integrator="rk4")), True
     yield "soft step with forces", with_forces(sample_world(solver="soft")), False
     fast = sample_world()
     fast.body("disc").velocity = (0.0, -300.0)
@@ -79,9 +80,10 @@ def worlds():
         Circle(0.05)
     )
     yield "continuous collision", fast, False
-    lone = World()
-    lone.add_body(Body("ball")).add_shape(Circle(0.5))
-    yield "one body", lone, False
+    for integrator in ("semi_implicit_euler", "verlet"):
+        lone = World(integrator=integrator)
+        lone.add_body(Body("ball")).add_shape(Circle(0.5))
+        yield f"one body, {integrator}", lone, False
 
 
 def helpers() -> None:

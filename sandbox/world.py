@@ -20,6 +20,7 @@ from sandbox.context import fill_context
 from sandbox.energy_growth import energy_limit
 from sandbox.errors import SimulationError
 from sandbox.forces import ForceGenerator
+from sandbox.integrators import work_arrays
 from sandbox.jit import entry
 from sandbox.projectile import advance_analytic
 from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SLEEPING, SPRING
@@ -44,6 +45,7 @@ class WorldArrays(NamedTuple):
     generators: np.ndarray
     buffers: ContactBuffers
     context: np.ndarray
+    work: np.ndarray | None  # the integrator's work arrays (None: an Euler method, no fields)
 
 
 def _field(name: str) -> property:
@@ -100,6 +102,7 @@ class World(Building, Measures):
         self._energy_stale = True  # the closed-system energy bound must be taken again
         self._sleep = False
         self._fast = False
+        self._work = None  # the integrator's work arrays (sandbox.integrators.work_arrays)
         self._step_dt = 0.0  # the dt the step context holds
         self._held = False  # a Manifolds view of the contact buffers was handed out
         self._run = None  # the way a step runs (see _choose_path)
@@ -151,6 +154,7 @@ class World(Building, Measures):
             self.generator_table,
             self._buffers_for(g),
             self.context,
+            self._work,
         )
 
     def geometry(self) -> Geometry:
@@ -260,12 +264,12 @@ class World(Building, Measures):
         s = self.settings
         fields = len(self.generator_table) > 0 or bool(np.any(self.joint_table["kind"] == SPRING))
         self._fast = (
-            s.broadphase == "sap"
-            and s.solver in ("iterative", "soft")
-            and s.integrator in _EULERS
-            and not fields
-            and not self.has_ccd
+            s.broadphase == "sap" and s.solver in ("iterative", "soft") and not self.has_ccd
         )
+        if s.integrator in _EULERS and not fields:
+            self._work = None  # v += a dt with a constant a: no look-ahead, nothing to keep
+        elif self._work is None or self._work.shape[1] != n:
+            self._work = work_arrays(n)
         fill_context(self.context[0], self.settings, self.gravity, dt)
         self._step_dt = dt
         self._dirty = False
@@ -333,9 +337,10 @@ class World(Building, Measures):
         fast = self._fast and self.timer is None
         model = (self.state, self.rot, g.table, g.vertices, self.joint_table, self.generator_table)
         if fast and len(g) < 2 and not len(self.joint_table) and s.solver != "soft":
-            self._run = _bind(entry(free_step, *model, self.context), *model, self.context)
+            args = (*model, self.context, self._work)
+            self._run = _bind(entry(free_step, *args), *args)
         elif fast:
-            args = (*model, b.sets, b.proxies, b.pairs, self.context)
+            args = (*model, b.sets, b.proxies, b.pairs, self.context, self._work)
             one_call = soft_step if s.solver == "soft" else fast_step
             self._run = _bind(entry(one_call, *args), *args)
         else:

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.math2d import cross, nudge, rotate
+from sandbox.math2d import cross, exchange, nudge, relative_velocity, rotate
 from sandbox.records import DYNAMIC, JOINT
 
 # Box2D's tuning of the position pass (b2_linearSlop and b2_maxLinearCorrection); the angular slop
@@ -45,27 +45,18 @@ def inverse_masses(j, bodies) -> tuple[float, float, float, float]:
 @njit
 def anchor_velocity(va, ra, vb, rb) -> tuple[float, float]:
     """Relative velocity of the anchors: vb + wb x rb - va - wa x ra (m/s)."""
-    return (
-        vb[0] - vb[2] * rb[1] - va[0] + va[2] * ra[1],
-        vb[1] + vb[2] * rb[0] - va[1] - va[2] * ra[0],
-    )
+    return relative_velocity(va, ra[0], ra[1], vb, rb[0], rb[1])
 
 
 @njit
 def apply_joint_impulse(va, vb, mass, ra, rb, px: float, py: float, angular: float):
-    """Impulse P on b at rb and -P on a at ra, plus an angular impulse on b (-it on a):
-    v += P / m, w += (r x P) / I (slides, "Effects of Force" / "Effects of Torque" as
-    impulses, the change of momentum)."""
-    va = (
-        va[0] - mass[0] * px,
-        va[1] - mass[0] * py,
-        va[2] - mass[1] * (cross(ra[0], ra[1], px, py) + angular),
-    )
-    vb = (
-        vb[0] + mass[2] * px,
-        vb[1] + mass[2] * py,
-        vb[2] + mass[3] * (cross(rb[0], rb[1], px, py) + angular),
-    )
+    """Impulse P on b at rb and -P on a at ra (:func:`sandbox.math2d.exchange`: v += P / m,
+    w += (r x P) / I), plus an angular impulse on b (-it on a), w += angular / I (slides,
+    "Effects of Force" / "Effects of Torque" as impulses, the change of momentum)."""
+    va, vb = exchange(va, vb, mass, ra, rb, px, py)
+    if angular != 0.0:
+        va = (va[0], va[1], va[2] - mass[1] * angular)
+        vb = (vb[0], vb[1], vb[2] + mass[3] * angular)
     return va, vb
 
 

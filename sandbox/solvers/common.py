@@ -5,6 +5,9 @@ Per contact point (:data:`sandbox.records.CONTACT_POINT`), as box2d-lite and Box
 
 - ``anchor_a``, ``anchor_b``: r_a, r_b from each centre of mass to the point (world frame);
   ``local_a``, ``local_b`` the same in each body's frame (the position pass turns them again);
+- ``rn_a``, ``rn_b``, ``rt_a``, ``rt_b``: r x n and r x t, all the sweeps need of the arms: the
+  point's speed along n is (v_b - v_a) . n + w_b (r_b x n) - w_a (r_a x n), and an impulse
+  lambda n turns a body by lambda (r x n) / I (:func:`normal_speed`, :func:`apply_normal`);
 - ``normal_mass``, ``tangent_mass``: 1 / k along the normal and the tangent t = (n_y, -n_x),
   with the collision equation's k (slides, "Collision Equation", step 1);
 - ``bias``: the normal velocity the constraint asks for, v_r . n >= bias (m/s): the gap closed
@@ -25,10 +28,10 @@ from sandbox.jit import njit
 from sandbox.math2d import (
     cross,
     effective_mass,
-    exchange,
     inverse_or_zero,
-    relative_velocity,
+    push_along,
     set_velocity,
+    speed_along,
     unrotate,
     velocity_of,
 )
@@ -43,17 +46,29 @@ def masses(c) -> tuple[float, float, float, float]:
 
 
 @njit
-def arms(p) -> tuple[tuple[float, float], tuple[float, float]]:
-    """r_a and r_b of a contact point, as two (x, y) tuples."""
-    return (p["anchor_a"][0], p["anchor_a"][1]), (p["anchor_b"][0], p["anchor_b"][1])
+def normal_speed(va, vb, p, nx: float, ny: float) -> float:
+    """v_r . n at a contact point for the velocities va, vb (slides, "Collision Effects"),
+    from the point's r x n: (w x r) . n = w (r x n)."""
+    return speed_along(va, vb, nx, ny, p["rn_a"], p["rn_b"])
 
 
 @njit
-def normal_speed(va, vb, p, nx: float, ny: float) -> float:
-    """v_r . n at a contact point for the velocities va, vb (slides, "Collision Effects")."""
-    ra, rb = arms(p)
-    dvx, dvy = relative_velocity(va, ra[0], ra[1], vb, rb[0], rb[1])
-    return dvx * nx + dvy * ny
+def tangent_speed(va, vb, p, nx: float, ny: float) -> float:
+    """v_r . t at a contact point, t = (n_y, -n_x)."""
+    return speed_along(va, vb, ny, -nx, p["rt_a"], p["rt_b"])
+
+
+@njit
+def apply_normal(va, vb, mass, p, nx: float, ny: float, impulse: float):
+    """-P on body a and +P on body b at the point, P = impulse n (N s): v += P / m and
+    w += (r x P) / I = impulse (r x n) / I (slides, "Collision Equation", steps 3a and 3b)."""
+    return push_along(va, vb, mass, nx, ny, p["rn_a"], p["rn_b"], impulse)
+
+
+@njit
+def apply_tangent(va, vb, mass, p, nx: float, ny: float, impulse: float):
+    """The same for P = impulse t, t = (n_y, -n_x) (friction)."""
+    return push_along(va, vb, mass, ny, -nx, p["rt_a"], p["rt_b"], impulse)
 
 
 @njit
@@ -68,9 +83,11 @@ def prepare_point(c, p, bodies, inv_dt: float, beta: float, slop: float) -> None
     p["anchor_b"][0], p["anchor_b"][1] = rbx, rby
     p["local_a"][0], p["local_a"][1] = unrotate(a["cs"][0], a["cs"][1], rax, ray)
     p["local_b"][0], p["local_b"][1] = unrotate(b["cs"][0], b["cs"][1], rbx, rby)
+    p["rn_a"], p["rn_b"] = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
+    p["rt_a"], p["rt_b"] = cross(rax, ray, ny, -nx), cross(rbx, rby, ny, -nx)
     # slides, "Collision Equation", step 1: k = 1/m_a + 1/m_b + (r_a x n)^2/I_a + (r_b x n)^2/I_b
-    kn = effective_mass(im_a, ii_a, im_b, ii_b, cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny))
-    kt = effective_mass(im_a, ii_a, im_b, ii_b, cross(rax, ray, ny, -nx), cross(rbx, rby, ny, -nx))
+    kn = effective_mass(im_a, ii_a, im_b, ii_b, p["rn_a"], p["rn_b"])
+    kt = effective_mass(im_a, ii_a, im_b, ii_b, p["rt_a"], p["rt_b"])
     p["normal_mass"], p["tangent_mass"] = inverse_or_zero(kn), inverse_or_zero(kt)
     # the velocities have not had this step's gravity yet: the speed the bodies arrived with
     p["approach_speed"] = normal_speed(
@@ -87,13 +104,10 @@ def prepare_block(c) -> None:
     c["use_block"] = False
     if c["count"] != 2:
         return
-    nx, ny = c["normal"][0], c["normal"][1]
     im_a, ii_a, im_b, ii_b = masses(c)
     p0, p1 = c["points"][0], c["points"][1]
-    a1 = cross(p0["anchor_a"][0], p0["anchor_a"][1], nx, ny)  # r_a x n at point 0
-    a2 = cross(p1["anchor_a"][0], p1["anchor_a"][1], nx, ny)  # r_a x n at point 1
-    b1 = cross(p0["anchor_b"][0], p0["anchor_b"][1], nx, ny)
-    b2 = cross(p1["anchor_b"][0], p1["anchor_b"][1], nx, ny)
+    a1, a2 = p0["rn_a"], p1["rn_a"]  # r_a x n at points 0 and 1
+    b1, b2 = p0["rn_b"], p1["rn_b"]
     k11 = effective_mass(im_a, ii_a, im_b, ii_b, a1, b1)
     k22 = effective_mass(im_a, ii_a, im_b, ii_b, a2, b2)
     k12 = im_a + im_b + ii_a * a1 * a2 + ii_b * b1 * b2
@@ -179,7 +193,7 @@ def match_previous(contacts, k: int, previous, k_old: int) -> int:
 
 @njit
 def warm_start(contacts, k: int, bodies) -> None:
-    """Apply last step's accumulated impulses P = p_n n + p_t t again (box2d-lite PreStep)."""
+    """Apply last step's accumulated impulses p_n n and p_t t again (box2d-lite PreStep)."""
     for i in range(k):
         c = contacts[i]
         nx, ny = c["normal"][0], c["normal"][1]
@@ -187,9 +201,8 @@ def warm_start(contacts, k: int, bodies) -> None:
         va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
         for j in range(c["count"]):
             p = c["points"][j]
-            pn, pt = p["normal_impulse"], p["tangent_impulse"]
-            ra, rb = arms(p)
-            va, vb = exchange(va, vb, mass, ra, rb, pn * nx + pt * ny, pn * ny - pt * nx)
+            va, vb = apply_normal(va, vb, mass, p, nx, ny, p["normal_impulse"])
+            va, vb = apply_tangent(va, vb, mass, p, nx, ny, p["tangent_impulse"])
         set_velocity(bodies, c["a"], va)
         set_velocity(bodies, c["b"], vb)
 
@@ -224,8 +237,7 @@ def restitution(contacts, k: int, bodies, threshold: float) -> None:
             old = p["normal_impulse"] + p["bounce_impulse"]
             new = max(old - p["normal_mass"] * (vn + e * p["approach_speed"]), 0.0)  # -e vn0
             p["bounce_impulse"] += new - old
-            ra, rb = arms(p)
-            va, vb = exchange(va, vb, mass, ra, rb, (new - old) * nx, (new - old) * ny)
+            va, vb = apply_normal(va, vb, mass, p, nx, ny, new - old)
             c["rebound"] = max(c["rebound"], (1.0 + e) * -p["depth"])
         set_velocity(bodies, c["a"], va)
         set_velocity(bodies, c["b"], vb)

@@ -28,8 +28,14 @@ import math
 
 from sandbox.jit import njit
 from sandbox.joints.solve import solve_joint_velocities
-from sandbox.math2d import exchange, set_velocity, velocity_of
-from sandbox.solvers.common import arms, masses, normal_speed
+from sandbox.math2d import set_velocity, velocity_of
+from sandbox.solvers.common import (
+    apply_normal,
+    apply_tangent,
+    masses,
+    normal_speed,
+    tangent_speed,
+)
 
 # at a large dt (:func:`large_step`): sweep until no normal constraint is off by more than
 # RESIDUAL x slop / dt (a point sinks a thousandth of the slop in the step), at most
@@ -52,26 +58,19 @@ def visit(q: int, half: int) -> int:
     return (q >> 1) + (q & 1) * half
 
 
-@njit
-def tangent_speed(va, vb, p, nx: float, ny: float) -> float:
-    """v_r . t at a contact point, t = (n_y, -n_x)."""
-    return normal_speed(va, vb, p, ny, -nx)
-
-
-@njit
+@njit(inline="always")
 def friction(c, va, vb, mu: float):
     """Coulomb friction within the cone of the current normal impulse: the impulse that stops
     sliding (v_r . t -> 0), its running total clamped to |p_t| <= mu p_n."""
     nx, ny = c["normal"][0], c["normal"][1]
+    mass = masses(c)
     for j in range(c["count"]):
         p = c["points"][j]
         old = p["tangent_impulse"]
         limit = mu * p["normal_impulse"]
         new = min(max(old - p["tangent_mass"] * tangent_speed(va, vb, p, nx, ny), -limit), limit)
         p["tangent_impulse"] = new
-        ra, rb = arms(p)
-        d = new - old  # P = d t
-        va, vb = exchange(va, vb, masses(c), ra, rb, d * ny, -d * nx)
+        va, vb = apply_tangent(va, vb, mass, p, nx, ny, new - old)
     return va, vb
 
 
@@ -80,13 +79,13 @@ def normal(c, va, vb):
     """Each point in turn: the impulse that makes v_r . n = bias, running total >= 0
     (slides, "Collision Equation", step 1, with the target bias instead of -e v_r . n)."""
     nx, ny = c["normal"][0], c["normal"][1]
+    mass = masses(c)
     for j in range(c["count"]):
         p = c["points"][j]
         old = p["normal_impulse"]
         new = max(old + p["normal_mass"] * (p["bias"] - normal_speed(va, vb, p, nx, ny)), 0.0)
         p["normal_impulse"] = new
-        ra, rb = arms(p)
-        va, vb = exchange(va, vb, masses(c), ra, rb, (new - old) * nx, (new - old) * ny)
+        va, vb = apply_normal(va, vb, mass, p, nx, ny, new - old)
     return va, vb
 
 
@@ -118,10 +117,8 @@ def block_normal(c, va, vb):
                 if b1 < 0.0 or b2 < 0.0:
                     return va, vb  # no solution (degenerate): leave as is
     mass = masses(c)
-    ra, rb = arms(p0)
-    va, vb = exchange(va, vb, mass, ra, rb, (x1 - a1) * nx, (x1 - a1) * ny)
-    ra, rb = arms(p1)
-    va, vb = exchange(va, vb, mass, ra, rb, (x2 - a2) * nx, (x2 - a2) * ny)
+    va, vb = apply_normal(va, vb, mass, p0, nx, ny, x1 - a1)
+    va, vb = apply_normal(va, vb, mass, p1, nx, ny, x2 - a2)
     p0["normal_impulse"], p1["normal_impulse"] = x1, x2
     return va, vb
 
@@ -134,13 +131,12 @@ def each_increment(c, va, vb, mu: float):
     mass = masses(c)
     for j in range(c["count"]):
         p = c["points"][j]
-        ra, rb = arms(p)
         dn = max(p["normal_mass"] * (p["bias"] - normal_speed(va, vb, p, nx, ny)), 0.0)
         p["normal_impulse"] += dn
-        va, vb = exchange(va, vb, mass, ra, rb, dn * nx, dn * ny)
+        va, vb = apply_normal(va, vb, mass, p, nx, ny, dn)
         dt = min(max(-p["tangent_mass"] * tangent_speed(va, vb, p, nx, ny), -mu * dn), mu * dn)
         p["tangent_impulse"] += dt
-        va, vb = exchange(va, vb, mass, ra, rb, dt * ny, -dt * nx)
+        va, vb = apply_tangent(va, vb, mass, p, nx, ny, dt)
     return va, vb
 
 

@@ -24,8 +24,8 @@ import numpy as np
 
 from sandbox.jit import njit
 from sandbox.joints.solve import solve_joint_velocities
-from sandbox.math2d import exchange, set_velocity, velocity_of
-from sandbox.solvers.common import arms, masses, normal_speed
+from sandbox.math2d import set_velocity, velocity_of
+from sandbox.solvers.common import apply_normal, apply_tangent, masses, normal_speed, tangent_speed
 
 
 @njit
@@ -72,13 +72,12 @@ def resolve_each_once(contacts, k: int, bodies, gravity_speed, threshold: float)
             approach = vn - g  # the approach speed without this step's gravity and forces
             e = c["restitution"] if -approach > threshold else 0.0
             jn = collision_impulse(e, approach, 1.0 / p["normal_mass"]) - g * p["normal_mass"]
-            ra, rb = arms(p)
-            va, vb = exchange(va, vb, mass, ra, rb, jn * nx, jn * ny)  # (2), (3a), (3b)
+            va, vb = apply_normal(va, vb, mass, p, nx, ny, jn)  # (2), (3a), (3b)
             # Coulomb friction: stop the sliding v_r . t, at most mu j
             limit = c["friction"] * jn
-            vt = normal_speed(va, vb, p, ny, -nx)
+            vt = tangent_speed(va, vb, p, nx, ny)
             jt = min(max(-p["tangent_mass"] * vt, -limit), limit)
-            va, vb = exchange(va, vb, mass, ra, rb, jt * ny, -jt * nx)
+            va, vb = apply_tangent(va, vb, mass, p, nx, ny, jt)
             p["normal_impulse"], p["tangent_impulse"] = jn, jt  # (the bounce is in jn already)
         set_velocity(bodies, c["a"], va)
         set_velocity(bodies, c["b"], vb)

@@ -24,9 +24,9 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.math2d import cross, effective_mass, exchange, set_velocity, velocity_of
+from sandbox.math2d import effective_mass, set_velocity, velocity_of
 from sandbox.records import DYNAMIC
-from sandbox.solvers.common import arms, normal_speed
+from sandbox.solvers.common import apply_normal, apply_tangent, normal_speed, tangent_speed
 from sandbox.solvers.iterative import solve as relax
 
 UNREACHED = 1 << 40  # layer of bodies with no path of contacts to a fixed body
@@ -98,25 +98,20 @@ def push_layer(c, layer, bodies) -> None:
     va, vb = velocity_of(bodies, a), velocity_of(bodies, b)
     for j in range(c["count"]):
         p = c["points"][j]
-        ra, rb = arms(p)
-        kn = effective_mass(
-            im_a, ii_a, im_b, ii_b, cross(ra[0], ra[1], nx, ny), cross(rb[0], rb[1], nx, ny)
-        )
+        kn = effective_mass(im_a, ii_a, im_b, ii_b, p["rn_a"], p["rn_b"])
         if kn <= 0.0:
             continue
         dp = max((p["bias"] - normal_speed(va, vb, p, nx, ny)) / kn, 0.0)
         if dp == 0.0:
             continue
         p["bounce_impulse"] += dp
-        va, vb = exchange(va, vb, mass, ra, rb, dp * nx, dp * ny)
+        va, vb = apply_normal(va, vb, mass, p, nx, ny, dp)
         # friction against the same frozen body, at most mu dp
-        kt = effective_mass(
-            im_a, ii_a, im_b, ii_b, cross(ra[0], ra[1], ny, -nx), cross(rb[0], rb[1], ny, -nx)
-        )
+        kt = effective_mass(im_a, ii_a, im_b, ii_b, p["rt_a"], p["rt_b"])
         limit = c["friction"] * dp
-        dt = min(max(-normal_speed(va, vb, p, ny, -nx) / kt, -limit), limit)
+        dt = min(max(-tangent_speed(va, vb, p, nx, ny) / kt, -limit), limit)
         p["tangent_impulse"] += dt
-        va, vb = exchange(va, vb, mass, ra, rb, dt * ny, -dt * nx)
+        va, vb = apply_tangent(va, vb, mass, p, nx, ny, dt)
     set_velocity(bodies, a, va)
     set_velocity(bodies, b, vb)
 

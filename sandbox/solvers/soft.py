@@ -35,9 +35,9 @@ from __future__ import annotations
 import math
 
 from sandbox.jit import njit
-from sandbox.math2d import exchange, rotate, set_velocity, velocity_of
+from sandbox.math2d import rotate, set_velocity, velocity_of
 from sandbox.records import DYNAMIC
-from sandbox.solvers.common import arms, masses, normal_speed
+from sandbox.solvers.common import apply_normal, apply_tangent, masses, normal_speed, tangent_speed
 
 STATIC_STIFFNESS = 2.0  # contacts with a body that cannot move are this many times stiffer
 MAX_CONTACT_HERTZ_PER_RATE = 0.125  # contact_hertz is capped at this times the substep rate
@@ -118,17 +118,15 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, max_push: float)
         new = max(old + change, 0.0)
         p["normal_impulse"] = new
         p["max_normal_impulse"] = max(p["max_normal_impulse"], new)
-        ra, rb = arms(p)
-        va, vb = exchange(va, vb, mass, ra, rb, (new - old) * nx, (new - old) * ny)
+        va, vb = apply_normal(va, vb, mass, p, nx, ny, new - old)
     for j in range(c["count"]):
         p = c["points"][j]
         old = p["tangent_impulse"]
         limit = c["friction"] * p["normal_impulse"]
-        vt = normal_speed(va, vb, p, ny, -nx)
+        vt = tangent_speed(va, vb, p, nx, ny)
         new = min(max(old - p["tangent_mass"] * vt, -limit), limit)
         p["tangent_impulse"] = new
-        ra, rb = arms(p)
-        va, vb = exchange(va, vb, mass, ra, rb, (new - old) * ny, -(new - old) * nx)
+        va, vb = apply_tangent(va, vb, mass, p, nx, ny, new - old)
     set_velocity(bodies, c["a"], va)
     set_velocity(bodies, c["b"], vb)
 
