@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from sandbox import Body, Box, World
-from sandbox.solvers.iterative import RESIDUAL, normal_residual
+from sandbox.solvers.iterative import RESIDUAL, large_step, normal_residual
 
 G = 9.81
 BOXES = 5
@@ -101,6 +101,25 @@ def test_normal_residual_counts_pushing_points_both_ways_and_free_points_only_be
     # rising at 1 m/s while its contact still pushes: also 1 m/s wrong (too much impulse)
     w.state["vel"][-1] = (0.0, 1.0)
     assert abs(residual_now(w) - 1.0) < 1e-12
+
+
+@pytest.mark.parametrize(
+    ("dt", "settings", "large"),
+    [
+        (1 / 60, {}, False),  # |g| dt^2 = 2.7 mm
+        (1 / 60, {"contact_margin": 0.0}, False),  # still within the 5 mm slop
+        (0.04, {}, False),  # 15.7 mm, within the 2 cm margin
+        (0.05, {}, True),  # 24.5 mm
+        (0.04, {"contact_margin": 0.0}, True),
+        (0.5, {"warm_start": False}, False),  # the teaching switch is left alone
+    ],
+)
+def test_a_large_step_is_one_where_gravity_moves_a_body_past_the_margin_and_the_slop(
+    dt, settings, large
+):
+    w = stack(dt, **settings)
+    w.step()
+    assert large_step(w.arrays().context) == large
 
 
 @pytest.mark.parametrize("warm_start", [True, False])

@@ -185,13 +185,14 @@ def normal_residual(contacts, k: int, bodies) -> float:
 @njit
 def large_step(context) -> bool:
     """Whether this dt is long enough that a body falling from rest moves past the contact
-    margin within one step, |g| dt^2 > ``settings.contact_margin`` (dt > 45 ms at 9.81 m/s^2
-    and the default 2 cm: the regime in which the step widens its margin to |g| dt^2), and
-    warm starting is on (off, the sweeps are left as they are: that switch is there to show
-    what it buys)."""
+    margin and the slop within one step, |g| dt^2 > max(``contact_margin``, ``slop``) (dt >
+    45 ms at 9.81 m/s^2 and the default 2 cm: the regime in which the step widens its margin to
+    |g| dt^2), and warm starting is on (off, the sweeps are left as they are: that switch is
+    there to show what it buys)."""
     ctx = context[0]
     g = math.hypot(ctx["gravity"][0], ctx["gravity"][1])
-    return ctx["warm_start"] and g * ctx["dt"] * ctx["dt"] > ctx["touch_margin"]
+    reach = max(ctx["touch_margin"], ctx["slop"])  # m
+    return ctx["warm_start"] and g * ctx["dt"] * ctx["dt"] > reach
 
 
 @njit
