@@ -92,7 +92,8 @@ VERTEX = np.dtype(
 CONTACT_POINT = np.dtype(
     [
         # what the solver's sweeps read and write, together (a cache line and a bit)
-        ("rn_a", F8),  # r_a x n (m), worked out once a step: (w x r) . n = w (r x n)
+        ("rn_a", F8),  # r_a x n (m), r_a from a's centre of mass to the point (world frame),
+        # worked out once a step: (w x r) . n = w (r x n)
         ("rn_b", F8),  # r_b x n
         ("rt_a", F8),  # r_a x t, t = (n_y, -n_x)
         ("rt_b", F8),  # r_b x t
@@ -103,8 +104,6 @@ CONTACT_POINT = np.dtype(
         ("tangent_impulse", F8),  # friction impulse along t (N s)
         ("max_normal_impulse", F8),  # the largest normal impulse of the step (N s)
         # what the narrowphase found, and what the passes before and after the sweeps use
-        ("anchor_a", V2),  # r_a: from a's centre of mass to the point, world frame (m)
-        ("anchor_b", V2),  # r_b, likewise
         ("point", V2),  # world point midway between the surfaces, at detection (m)
         ("depth", F8),  # penetration at detection (m): > 0 overlapping, < 0 a gap
         ("feature", I8),  # which features touch; stays the same while they do (warm starting)
@@ -129,10 +128,12 @@ CONTACT = np.dtype(
         ("inv_mass_b", F8),
         ("inv_moment_b", F8),
         ("use_block", np.bool_),  # two points solved together (block solver)
+        # the points right after what every sweep reads: a one-point contact's sweep then
+        # touches three cache lines of its record
+        ("points", CONTACT_POINT, 2),
         ("block_k", F8, 3),  # the 2x2 effective mass matrix K as the block solver reads it:
         # (1 / normal_mass of point 0, k12, 1 / normal_mass of point 1)
         ("block_mass", F8, 3),  # K^-1 as (m11, m12, m22)
-        ("points", CONTACT_POINT, 2),
         ("shape_a", I8),
         ("shape_b", I8),
         ("restitution", F8),  # e: the product of the two shapes' values
