@@ -128,12 +128,10 @@ CONTACT = np.dtype(
         ("inv_mass_b", F8),
         ("inv_moment_b", F8),
         ("use_block", np.bool_),  # two points solved together (block solver)
-        # the points right after what every sweep reads: a one-point contact's sweep then
-        # touches three cache lines of its record
-        ("points", CONTACT_POINT, 2),
         ("block_k", F8, 3),  # the 2x2 effective mass matrix K as the block solver reads it:
         # (1 / normal_mass of point 0, k12, 1 / normal_mass of point 1)
         ("block_mass", F8, 3),  # K^-1 as (m11, m12, m22)
+        ("points", CONTACT_POINT, 2),
         ("shape_a", I8),
         ("shape_b", I8),
         ("restitution", F8),  # e: the product of the two shapes' values
