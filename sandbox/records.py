@@ -92,7 +92,8 @@ VERTEX = np.dtype(
 CONTACT_POINT = np.dtype(
     [
         # what the solver's sweeps read and write, together (a cache line and a bit)
-        ("rn_a", F8),  # r_a x n (m), worked out once a step: (w x r) . n = w (r x n)
+        ("rn_a", F8),  # r_a x n (m), r_a from a's centre of mass to the point (world frame),
+        # worked out once a step: (w x r) . n = w (r x n)
         ("rn_b", F8),  # r_b x n
         ("rt_a", F8),  # r_a x t, t = (n_y, -n_x)
         ("rt_b", F8),  # r_b x t
@@ -103,8 +104,6 @@ CONTACT_POINT = np.dtype(
         ("tangent_impulse", F8),  # friction impulse along t (N s)
         ("max_normal_impulse", F8),  # the largest normal impulse of the step (N s)
         # what the narrowphase found, and what the passes before and after the sweeps use
-        ("anchor_a", V2),  # r_a: from a's centre of mass to the point, world frame (m)
-        ("anchor_b", V2),  # r_b, likewise
         ("point", V2),  # world point midway between the surfaces, at detection (m)
         ("depth", F8),  # penetration at detection (m): > 0 overlapping, < 0 a gap
         ("feature", I8),  # which features touch; stays the same while they do (warm starting)

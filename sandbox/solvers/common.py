@@ -3,11 +3,11 @@ warm start them from the last step, bounce, and report.
 
 Per contact point (:data:`sandbox.records.CONTACT_POINT`), as box2d-lite and Box2D keep them:
 
-- ``anchor_a``, ``anchor_b``: r_a, r_b from each centre of mass to the point (world frame);
-  ``local_a``, ``local_b`` the same in each body's frame (the position pass turns them again);
-- ``rn_a``, ``rn_b``, ``rt_a``, ``rt_b``: r x n and r x t, all the sweeps need of the arms: the
-  point's speed along n is (v_b - v_a) . n + w_b (r_b x n) - w_a (r_a x n), and an impulse
-  lambda n turns a body by lambda (r x n) / I (:func:`normal_speed`, :func:`apply_normal`);
+- ``rn_a``, ``rn_b``, ``rt_a``, ``rt_b``: r x n and r x t for the arms r_a, r_b from each centre
+  of mass to the point (world frame), all the sweeps need of the arms: the point's speed along
+  n is (v_b - v_a) . n + w_b (r_b x n) - w_a (r_a x n), and an impulse lambda n turns a body by
+  lambda (r x n) / I (:func:`normal_speed`, :func:`apply_normal`); ``local_a``, ``local_b``
+  the arms in each body's frame (the position pass turns them again);
 - ``normal_mass``, ``tangent_mass``: 1 / k along the normal and the tangent t = (n_y, -n_x),
   with the collision equation's k (slides, "Collision Equation", step 1);
 - ``bias``: the normal velocity the constraint asks for, v_r . n >= bias (m/s): the gap closed
@@ -79,8 +79,6 @@ def prepare_point(c, p, bodies, inv_dt: float, beta: float, slop: float) -> None
     im_a, ii_a, im_b, ii_b = masses(c)
     rax, ray = p["point"][0] - a["com"][0], p["point"][1] - a["com"][1]
     rbx, rby = p["point"][0] - b["com"][0], p["point"][1] - b["com"][1]
-    p["anchor_a"][0], p["anchor_a"][1] = rax, ray
-    p["anchor_b"][0], p["anchor_b"][1] = rbx, rby
     p["local_a"][0], p["local_a"][1] = unrotate(a["cs"][0], a["cs"][1], rax, ray)
     p["local_b"][0], p["local_b"][1] = unrotate(b["cs"][0], b["cs"][1], rbx, rby)
     p["rn_a"], p["rn_b"] = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)

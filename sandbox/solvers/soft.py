@@ -77,10 +77,12 @@ def prepare_soft(contacts, k: int, bodies, context) -> None:
         c["soft_bias_rate"], c["soft_mass_scale"] = rate, mass_scale
         c["soft_impulse_scale"] = impulse_scale
         nx, ny = c["normal"][0], c["normal"][1]
+        com_a, com_b = bodies[c["a"]]["com"], bodies[c["b"]]["com"]
         for j in range(c["count"]):
             p = c["points"][j]
-            dx = p["anchor_b"][0] - p["anchor_a"][0]
-            dy = p["anchor_b"][1] - p["anchor_a"][1]
+            # r_b - r_a, with the arms as the prepare stage found them
+            dx = (p["point"][0] - com_b[0]) - (p["point"][0] - com_a[0])
+            dy = (p["point"][1] - com_b[1]) - (p["point"][1] - com_a[1])
             p["base_separation"] = -p["depth"] - (dx * nx + dy * ny)
 
 
