@@ -10,6 +10,8 @@ import tomllib
 import zipfile
 from pathlib import Path
 
+from source_copy import clean_copy
+
 import sandbox
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -17,7 +19,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def test_wheel_builds_quietly_and_carries_its_data(tmp_path):
     res = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "-v", "-w", str(tmp_path)],
+        [sys.executable, "-m", "pip", "wheel", str(clean_copy(tmp_path / "src")), "--no-deps", "-v"]
+        + ["-w", str(tmp_path)],
         capture_output=True,
         text=True,
     )

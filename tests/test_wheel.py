@@ -7,7 +7,6 @@ downloaded but the build backend); then a new user's first command runs from an 
 """
 
 import os
-import shutil
 import subprocess
 import sys
 import sysconfig
@@ -15,11 +14,11 @@ from pathlib import Path
 
 import nbformat
 import pytest
+from source_copy import clean_copy
 
 from sandbox.course.links import book_problems
 
 ROOT = Path(__file__).resolve().parent.parent
-SOURCES = ("pyproject.toml", "setup.py", "README.md", "LICENSE", "sandbox", "lessons", "scenes")
 
 
 def run(args, **kw) -> subprocess.CompletedProcess:
@@ -30,14 +29,7 @@ def run(args, **kw) -> subprocess.CompletedProcess:
 def installed(tmp_path_factory):
     """A venv with only the wheel installed in it, and the environment to run it in."""
     tmp = tmp_path_factory.mktemp("wheel")
-    src = tmp / "src"
-    src.mkdir()
-    for name in SOURCES:  # a clean copy: no build/ or egg-info left in the checkout
-        if (ROOT / name).is_dir():
-            ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.nbi", "*.nbc")
-            shutil.copytree(ROOT / name, src / name, ignore=ignore)
-        else:
-            shutil.copy2(ROOT / name, src / name)
+    src = clean_copy(tmp / "src")
     built = run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", tmp / "dist", src])
     assert built.returncode == 0, built.stderr
     (wheel,) = (tmp / "dist").glob("physics_sandbox-*.whl")
