@@ -259,6 +259,7 @@ CONTEXT = np.dtype(
         ("contact_points", I8),
         ("warm_started_points", I8),
         ("shock_layers", I8),
+        ("sweeps", I8),  # iterative solver: velocity sweeps in the last step (more at a large dt)
         ("sorted_axis", I8),  # sweep and prune: the axis PROXY["order"] is sorted on, -1: none
         ("contact_set", I8),  # which of the two contact sets holds the last step's contacts
         ("contact_count", I8, 2),  # how many contacts each set holds

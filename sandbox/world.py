@@ -374,7 +374,9 @@ class World(Building, Measures):
     @property
     def stats(self) -> dict:
         """Counters from the last step or :meth:`find_contacts`: ``pair_tests``, ``pairs``,
-        ``contacts``, ``contact_points``, ``warm_started_points`` (and ``shock_layers``)."""
+        ``contacts``, ``contact_points``, ``warm_started_points`` (and ``shock_layers``; and
+        ``sweeps``, the velocity sweeps of the iterative and shock solvers: ``iterations``,
+        more at a large dt, where they go on until the contacts hold)."""
         if self._found_stats is not None:
             return dict(self._found_stats)
         if self.steps == 0:
@@ -383,6 +385,8 @@ class World(Building, Measures):
         keys = ["pair_tests", "pairs", "contacts", "contact_points", "warm_started_points"]
         if self.settings.solver == "shock":
             keys.append("shock_layers")
+        if self.settings.solver in ("iterative", "shock"):
+            keys.append("sweeps")
         return {key: int(ctx[key]) for key in keys}
 
     def find_contacts(self) -> list:

@@ -209,6 +209,7 @@ def solve(contacts, k: int, joints, bodies, context) -> None:
     topples from a tilt of 1e-4 rad (tests/test_large_dt.py)."""
     ctx = context[0]
     n = ctx["iterations"]
+    ctx["sweeps"] = n
     for _ in range(n):
         solve_joint_velocities(joints, bodies, ctx["accumulate"])
         sweep(contacts, k, bodies, ctx["accumulate"])
@@ -220,3 +221,4 @@ def solve(contacts, k: int, joints, bodies, context) -> None:
             break
         solve_joint_velocities(joints, bodies, ctx["accumulate"])
         sweep(contacts, k, bodies, ctx["accumulate"])
+        ctx["sweeps"] += 1
