@@ -8,13 +8,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from step_paths import fast_and_staged, same_state
 
 from sandbox import Body, Box, Circle, World
 from sandbox.build import build_world
 from sandbox.joints import PivotJoint
 from sandbox.scene import validate_scene
 from sandbox.solvers.soft import softness
-from sandbox.step import StageTimer
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import scenes  # noqa: E402  (benchmarks/scenes.py: the benchmark scenes as scene dicts)
@@ -205,11 +205,6 @@ def test_one_call_soft_step_equals_the_staged_one():
             b.add_shape(Box(0.5, 0.4) if i % 2 else Circle(0.25))
         return w
 
-    fast, staged = pile(), pile()
-    staged.timer = StageTimer()
-    for _ in range(120):
-        fast.step()
-        staged.step()
-    assert fast._fast
-    for key in ("com", "vel", "omega", "rot"):
-        assert np.array_equal(getattr(fast, key), getattr(staged, key)), key
+    fast, staged = fast_and_staged(pile, 120)
+    assert fast._fast and staged.timer.steps == 120
+    assert same_state(fast, staged)

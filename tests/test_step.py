@@ -4,9 +4,10 @@ out."""
 
 import numpy as np
 import pytest
+from step_paths import fast_and_staged, same_state
 
 from sandbox import Body, Box, Circle, World
-from sandbox.step import STAGES, StageTimer
+from sandbox.step import STAGES
 
 
 def pile(broadphase="sap", **settings):
@@ -26,16 +27,10 @@ def run(w, steps=90):
     return w
 
 
-def same_state(a, b) -> bool:
-    return all(np.array_equal(getattr(a, k), getattr(b, k)) for k in ("com", "vel", "omega", "rot"))
-
-
 def test_compiled_step_equals_the_staged_step():
     # one compiled call and the stages called from Python run the same functions in the same
     # order: bit-identical bodies, impulses and statistics (exact equality)
-    fast, staged = pile(), pile()
-    staged.timer = StageTimer()  # a timer makes the world take the staged path
-    run(fast), run(staged)
+    fast, staged = fast_and_staged(pile, 90)
     assert fast._fast and staged.timer.steps == 90
     assert same_state(fast, staged)
     assert np.array_equal(fast.manifolds.normal_impulse, staged.manifolds.normal_impulse)
@@ -85,9 +80,7 @@ def test_held_manifolds_keep_their_step():
 @pytest.mark.parametrize("switches", [{"warm_start": False}, {"position_correction": False}])
 def test_switches_take_the_compiled_step_too(switches):
     # the teaching switches are read from the step context: same result either way
-    fast, staged = pile(**switches), pile(**switches)
-    staged.timer = StageTimer()
-    run(fast, 40), run(staged, 40)
+    fast, staged = fast_and_staged(lambda: pile(**switches), 40)
     assert same_state(fast, staged)
 
 

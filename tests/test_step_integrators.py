@@ -4,12 +4,12 @@
 
 import numpy as np
 import pytest
+from step_paths import fast_and_staged, same_state
 
 from sandbox import Body, Box, Circle, World
 from sandbox.forces import Buoyancy, ConstantForce, Drag
 from sandbox.integrators import INCREMENTS
 from sandbox.joints.spring import SpringJoint
-from sandbox.step import StageTimer
 
 LOOK_AHEAD = ("verlet", "rk4")
 
@@ -32,21 +32,13 @@ def fields_pile(integrator: str, solver: str = "iterative") -> World:
     return w
 
 
-def same_state(a, b) -> bool:
-    return all(np.array_equal(getattr(a, k), getattr(b, k)) for k in ("com", "vel", "omega", "rot"))
-
-
 @pytest.mark.parametrize("solver", ["iterative", "soft"])
 @pytest.mark.parametrize("integrator", ["explicit_euler", "semi_implicit_euler", *LOOK_AHEAD])
 def test_one_call_step_with_forces_equals_the_staged_step(integrator, solver):
     # the one-call step and the staged step run the same functions in the same order:
     # bit-identical bodies and impulses (exact equality), with springs, drag, buoyancy, a
     # thruster and contacts
-    fast, staged = fields_pile(integrator, solver), fields_pile(integrator, solver)
-    staged.timer = StageTimer()
-    for _ in range(120):
-        fast.step()
-        staged.step()
+    fast, staged = fast_and_staged(lambda: fields_pile(integrator, solver), 120)
     assert fast._fast and staged.timer.steps == 120
     assert same_state(fast, staged)
     assert np.array_equal(fast.manifolds.normal_impulse, staged.manifolds.normal_impulse)
@@ -63,11 +55,7 @@ def test_one_body_step_with_forces_equals_the_staged_step(integrator):
         w.add_force(ConstantForce(force=(0.0, 4.0), point=(0.2, 0.0)))
         return w
 
-    fast, staged = thrown(), thrown()
-    staged.timer = StageTimer()
-    for _ in range(200):
-        fast.step()
-        staged.step()
+    fast, staged = fast_and_staged(thrown, 200)
     assert fast._fast and len(fast.geometry()) == 1
     assert same_state(fast, staged)
 
