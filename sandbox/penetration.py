@@ -34,7 +34,7 @@ from sandbox.joints.solve import solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies
 from sandbox.solvers.iterative import visit
-from sandbox.solvers.shock import contact_layers
+from sandbox.solvers.shock import contact_layers, hold_lower
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
 METHODS = ("half", "mass_weighted", "impulse")  # settings.penetration, in code order
@@ -80,15 +80,11 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float):
 
 @njit
 def position_masses(c, bodies, layer) -> tuple[float, float, float, float]:
-    """(1/m_a, 1/I_a, 1/m_b, 1/I_b) for the position passes: the lower body of two layers is
-    held (infinite mass)."""
+    """(1/m_a, 1/I_a, 1/m_b, 1/I_b) for the position passes: the bodies' own, the lower body of
+    two layers held (:func:`sandbox.solvers.shock.hold_lower`)."""
     a, b = bodies[c["a"]], bodies[c["b"]]
-    im_a, ii_a, im_b, ii_b = a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"]
-    if layer[c["a"]] < layer[c["b"]]:
-        im_a = ii_a = 0.0
-    elif layer[c["b"]] < layer[c["a"]]:
-        im_b = ii_b = 0.0
-    return im_a, ii_a, im_b, ii_b
+    mass = (a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"])
+    return hold_lower(mass, layer[c["a"]], layer[c["b"]])
 
 
 @njit

@@ -26,7 +26,13 @@ import numpy as np
 from sandbox.jit import njit
 from sandbox.math2d import effective_mass, set_velocity, velocity_of
 from sandbox.records import DYNAMIC
-from sandbox.solvers.common import apply_normal, apply_tangent, normal_speed, tangent_speed
+from sandbox.solvers.common import (
+    apply_normal,
+    apply_tangent,
+    masses,
+    normal_speed,
+    tangent_speed,
+)
 from sandbox.solvers.iterative import solve as relax
 
 UNREACHED = 1 << 40  # layer of bodies with no path of contacts to a fixed body
@@ -85,16 +91,24 @@ def contact_layers(contacts, k: int, bodies, gap: float = np.inf):
 
 
 @njit
+def hold_lower(mass, layer_a: int, layer_b: int) -> tuple[float, float, float, float]:
+    """``mass`` = (1/m_a, 1/I_a, 1/m_b, 1/I_b) with the lower body of two layers frozen
+    (1/m = 1/I = 0): immovable for this contact. Bodies of one layer keep their masses."""
+    im_a, ii_a, im_b, ii_b = mass
+    if layer_a < layer_b:
+        im_a = ii_a = 0.0  # body a is below
+    elif layer_b < layer_a:
+        im_b = ii_b = 0.0
+    return im_a, ii_a, im_b, ii_b
+
+
+@njit
 def push_layer(c, layer, bodies) -> None:
-    """One contact of the shock pass: the lower body frozen (1/m = 1/I = 0), pushes only."""
+    """One contact of the shock pass: the lower body frozen (:func:`hold_lower`), pushes only."""
     a, b = c["a"], c["b"]
     nx, ny = c["normal"][0], c["normal"][1]
-    im_a, ii_a, im_b, ii_b = c["inv_mass_a"], c["inv_moment_a"], c["inv_mass_b"], c["inv_moment_b"]
-    if layer[a] < layer[b]:
-        im_a = ii_a = 0.0  # body a is below: immovable for this contact
-    elif layer[b] < layer[a]:
-        im_b = ii_b = 0.0
-    mass = (im_a, ii_a, im_b, ii_b)
+    mass = hold_lower(masses(c), layer[a], layer[b])
+    im_a, ii_a, im_b, ii_b = mass
     va, vb = velocity_of(bodies, a), velocity_of(bodies, b)
     for j in range(c["count"]):
         p = c["points"][j]
