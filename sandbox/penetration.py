@@ -60,8 +60,9 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float):
     into layers from the fixed ones up (:func:`sandbox.solvers.shock.contact_layers`) and the
     contacts visited from the ground up; in a contact between two layers only the upper body
     moves (layers over the contacts closer than ``gap``, m: the contact margin without what a
-    large dt adds to it). A stack's overlap then goes up and out in one pass, whatever the masses: nothing
-    pushes a light box down under a heavy one, or a box into the ground. Otherwise every body
+    large dt adds to it). A stack's overlap then goes up and out in one pass, whatever the
+    masses: nothing pushes a light box down under a heavy one, or a box into the ground.
+    Otherwise every body
     is in one layer and the contacts are visited in the velocity sweeps' order
     (:func:`sandbox.solvers.iterative.visit`)."""
     if not layered:

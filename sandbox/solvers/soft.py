@@ -21,8 +21,9 @@ times: integrate the velocities over h, warm start (the accumulated impulses aga
 with the soft bias, integrate the positions, and *relax*: solve again without bias, so the
 velocities the next substep starts from carry no push-out speed; after the substeps, the
 position stage every solver shares (``sandbox.penetration.fix_positions``: only what sank
-beyond the slop) and the restitution pass. Contacts with a static body are twice as stiff, as in Box2D (bodies are not
-pushed through the ground). Overlap is pushed out at most at ``max_push_speed`` (m/s).
+beyond the slop) and the restitution pass. Contacts with a static body are twice as stiff, as
+in Box2D (bodies are not pushed through the ground). Overlap is pushed out at most at
+``max_push_speed`` (m/s).
 
 Why substeps beat iterations at equal cost: an iteration shares one velocity error out among
 the constraints; a substep also moves the bodies, so each constraint then sees its real,
