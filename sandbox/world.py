@@ -20,10 +20,10 @@ from sandbox.context import fill_context
 from sandbox.energy_growth import energy_limit
 from sandbox.errors import SimulationError
 from sandbox.forces import ForceGenerator
-from sandbox.integrators import work_arrays
+from sandbox.integrators import has_fields, work_arrays
 from sandbox.jit import entry
 from sandbox.projectile import advance_analytic
-from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SLEEPING, SPRING
+from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SLEEPING
 from sandbox.settings import Settings
 from sandbox.shape_records import Geometry, build_geometry
 from sandbox.sleep import wake_island
@@ -262,7 +262,7 @@ class World(Building, Measures):
         self.state["generators"] = masks
         self.has_ccd = bool(self.ccd.any())
         s = self.settings
-        fields = len(self.generator_table) > 0 or bool(np.any(self.joint_table["kind"] == SPRING))
+        fields = has_fields(self.joint_table, self.generator_table)  # the step's own test
         self._fast = (
             s.broadphase == "sap" and s.solver in ("iterative", "soft") and not self.has_ccd
         )
