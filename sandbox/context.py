@@ -20,7 +20,6 @@ SOFT_DEFAULTS = (
     ("joint_damping_ratio", 5.0),
     ("max_push_speed", 3.0),
     ("sleep", False),
-    ("threads", 1),
 )
 
 

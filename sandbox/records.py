@@ -252,7 +252,6 @@ CONTEXT = np.dtype(
         ("joint_damping_ratio", F8),
         ("max_push_speed", F8),
         ("sleep", np.bool_),  # sleeping islands on
-        ("threads", I8),  # > 1: the narrowphase shares large pair lists among threads
         # reported by the stages
         ("pair_tests", I8),
         ("pairs", I8),

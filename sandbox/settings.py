@@ -144,13 +144,6 @@ class Settings:
     sleep: bool = _setting(
         False, "boolean", "let bodies that have come to rest sleep until something touches them"
     )
-    threads: int = _setting(
-        1,
-        "integer",
-        "threads the narrowphase may share a large world's pairs among (1: one thread; the "
-        "result is the same either way)",
-        Range(1, 64),
-    )
     substeps: int = _setting(
         4, "integer", "substeps per step of the soft solver (solver: soft)", Range(1, 64)
     )

@@ -56,7 +56,6 @@ from sandbox.joints.solve import (
     warm_start_joints_soft,
 )
 from sandbox.narrowphase import collide_into
-from sandbox.narrowphase.threaded import collide_threaded
 from sandbox.penetration import fix_positions
 from sandbox.sleep import fall_asleep, moving_kinematic, wake_touched
 from sandbox.solvers import SOLVERS, iterative
@@ -167,21 +166,6 @@ def store_impulses(k: int, bodies, context) -> int:
     return 0
 
 
-THREADED_PAIRS = 1000  # fewer pairs than this are collided on one thread whatever the setting
-
-
-@njit
-def collide(pairs, npairs: int, geometry, context, contacts) -> int:
-    """Stage 2: the manifolds of ``pairs[:npairs]`` into ``contacts``
-    (:func:`sandbox.narrowphase.collide_into`), the pairs shared among threads when
-    ``settings.threads`` > 1 and they are many (:mod:`sandbox.narrowphase.threaded`: the same
-    result). ``geometry``: (shapes, vertices, bodies, joints). Returns how many."""
-    ctx = context[0]
-    if ctx["threads"] > 1 and npairs >= THREADED_PAIRS:
-        return collide_threaded(pairs, npairs, *geometry, ctx["contact_margin"], contacts)
-    return collide_into(pairs, npairs, *geometry, ctx["contact_margin"], contacts)
-
-
 @njit
 def find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context) -> int:
     """Stages 1 and 2: the pairs, then their manifolds into ``contacts``. Returns how many
@@ -196,7 +180,9 @@ def find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, co
         npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
         if npairs < 0:
             return npairs
-        k = collide(pairs[1], npairs, (shapes, vertices, bodies, joints), context, contacts)
+        k = collide_into(
+            pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
+        )
         if not ctx["sleep"] or wake_touched(contacts, k, bodies) == 0:
             break
     return k
@@ -396,7 +382,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
             return npairs
         clock.lap("find_pairs")
         geometry = (a.shapes, a.vertices, a.bodies, a.joints)
-        k = collide(a.buffers.pairs[1], npairs, geometry, a.context, contacts)
+        k = collide_into(a.buffers.pairs[1], npairs, *geometry, ctx["contact_margin"], contacts)
         if ctx["sleep"] and wake_touched(contacts, k, a.bodies) > 0:
             buffers = (a.buffers.proxies, a.buffers.pairs)
             k = find_contacts(*geometry, *buffers, contacts, a.context)

@@ -136,35 +136,6 @@ def collide_pair(i, j, shapes, wp, bodies, margin):
 
 
 @njit
-def collide_slot(q: int, pairs, shapes, wp, bodies, joints, margin: float, c) -> bool:
-    """The manifold of pair ``q`` into the CONTACT record ``c``. Returns False, leaving ``c``
-    as it was, when the pair has none (shapes of one body, joined bodies, out of reach, or no
-    point within ``margin``)."""
-    i, j = pairs[q, 0], pairs[q, 1]
-    a, b = shapes[i]["body"], shapes[j]["body"]
-    if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
-        return False
-    if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
-        return False
-    count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = collide_pair(i, j, shapes, wp, bodies, margin)
-    if count == 0:
-        return False
-    c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
-    c["normal"][0], c["normal"][1] = nx, ny
-    c["friction"] = shapes[i]["friction"] * shapes[j]["friction"]
-    c["restitution"] = shapes[i]["restitution"] * shapes[j]["restitution"]
-    p = c["points"][0]
-    p["point"][0], p["point"][1], p["depth"], p["feature"] = x0, y0, d0, f0
-    p = c["points"][1]
-    if count == 2:
-        p["point"][0], p["point"][1], p["depth"], p["feature"] = x1, y1, d1, f1
-    else:
-        p["point"][0] = p["point"][1] = p["depth"] = 0.0
-        p["feature"] = -1
-    return True
-
-
-@njit
 def collide_into(pairs, npairs, shapes, vertices, bodies, joints, margin, contacts) -> int:
     """Contact manifolds of the shape pairs ``pairs[:npairs]`` at the bodies' current poses,
     written in pair order into ``contacts`` (CONTACT records), at most one per pair; pairs of
@@ -172,10 +143,34 @@ def collide_into(pairs, npairs, shapes, vertices, bodies, joints, margin, contac
 
     ``margin`` (m) keeps points with a gap up to ``margin`` (speculative contacts)."""
     wp = place_polygons(shapes, vertices, bodies)
+    n_bodies = bodies.shape[0]
     k = 0
     for q in range(npairs):
-        if collide_slot(q, pairs, shapes, wp, bodies, joints, margin, contacts[k]):
-            k += 1
+        i, j = pairs[q, 0], pairs[q, 1]
+        a, b = shapes[i]["body"], shapes[j]["body"]
+        if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
+            continue
+        if joints.shape[0] > 0 and joined(joints, n_bodies, a, b):
+            continue
+        count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = collide_pair(
+            i, j, shapes, wp, bodies, margin
+        )
+        if count == 0:
+            continue
+        c = contacts[k]
+        c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
+        c["normal"][0], c["normal"][1] = nx, ny
+        c["friction"] = shapes[i]["friction"] * shapes[j]["friction"]
+        c["restitution"] = shapes[i]["restitution"] * shapes[j]["restitution"]
+        p = c["points"][0]
+        p["point"][0], p["point"][1], p["depth"], p["feature"] = x0, y0, d0, f0
+        p = c["points"][1]
+        if count == 2:
+            p["point"][0], p["point"][1], p["depth"], p["feature"] = x1, y1, d1, f1
+        else:
+            p["point"][0] = p["point"][1] = p["depth"] = 0.0
+            p["feature"] = -1
+        k += 1
     return k
 
 
