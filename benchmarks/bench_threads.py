@@ -30,11 +30,12 @@ said; medians; 2t/1t is the two-thread step's wall time over the one-thread step
 - The narrowphase alone, called back to back: up to 2.0x faster on two threads for boxes
   (polygon pairs are costly) and 1.0-1.3x for circles when the second core is free; 0.5-0.9x
   as soon as another process uses it, and always 0.45-0.86x with the ``workqueue`` layer.
-- Whole steps: 2t/1t 0.96-1.03 on the quiet machine (within the noise), 1.06-1.14 with
-  ``OMP_WAIT_POLICY=passive``, 0.98-1.10 with ``workqueue``, and 2.4-5x slower whenever the
-  machine was busy (the step waits for a worker the OS has not scheduled yet: 8 ms where one
-  thread takes 1.7). OpenMP's workers also spin on after each region: on pyramid_40 the
-  process's CPU time per step was 2.9-3.5 ms with two threads against 2.2 ms with one.
+- Whole steps, 2t/1t in five OpenMP runs: pyramid_20 0.97-1.03, pyramid_40 0.96-1.23,
+  rain_1000 0.96-1.16, rain_5000 1.10-1.17; but 2.4-5x (6 of the 17 figures) while other
+  processes were busy (the step waits for a worker the OS has not scheduled yet: 8 ms where one
+  thread takes 1.7). With ``OMP_WAIT_POLICY=passive`` 0.99-1.14, with ``workqueue``
+  0.98-1.25. OpenMP's workers also spin on after each region: on pyramid_40 the
+  process's CPU time per step was 2.9-3.7 ms with two threads against 2.2-2.5 ms with one.
 - Compiling: the parallel kernel adds about 3 s to an empty cache (the engine with its first
   step: 32 s, same run). Built into the engine's step (a ``threads`` setting, tried in commit
   cba776a and taken out again), it made a cold ``sandbox simulate scenes/pyramid.json --steps
