@@ -307,13 +307,13 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 
 # %% [markdown]
 # Both solvers' errors grow with the size of the problem. The iterative solver's sag grows
-# faster than the height, about as its square: 0.70, 5.7, 28 and 130 mm for bases 5, 10, 20 and
+# faster than the height, about as its square: 0.70, 5.7, 28 and 129 mm for bases 5, 10, 20 and
 # 40 (more rows, each carrying more weight, with the same 10 sweeps). Its chain stretch grows
 # about in proportion to the length: 5.0, 8.4, 17.9 and 31.7 mm for 5 to 40 links.
 #
 # With its defaults the soft step does no better on the pyramids: it sags more on the small
 # ones (2.0 against 0.70 mm at base 5, 7.5 against 5.7 at base 10) and about as much on the
-# large ones (30 against 28 mm at base 20, 122 against 130 mm at base 40). Its sag is the static
+# large ones (30 against 28 mm at base 20, 122 against 129 mm at base 40). Its sag is the static
 # error of its springs (section 2), added up along the load path: every row of boxes is a row
 # of springs squeezed by the weight above it, which grows with the row's depth, so the top box
 # drops about four times as far each time the base doubles (2.0, 7.5, 30, 122 mm), as the
@@ -925,7 +925,7 @@ print_table(["pyramid of 40", "lowest top drop, 1-2 s (mm)", "highest top drop, 
 # settling (it ends between 122.1 and 122.2 mm, section 5), and it moved 49 mm sideways by 2 s,
 # while it settled; by 10 s it had crept back to 46 mm (0.3 mm/s). With 8 substeps it is at
 # rest within a second, 30.2 mm down (to 0.06 mm from 1 s to 2 s): a quarter of the defaults'
-# 122 mm, as $1/f^2$ predicts, and less than a quarter of the iterative solver's 130 mm. Its top
+# 122 mm, as $1/f^2$ predicts, and less than a quarter of the iterative solver's 129 mm. Its top
 # box moved 14 mm sideways. The price is more time per step (the table).
 #
 # **The chains.** The issue asks for a worst stretch under 5 mm (20 links) and under 1 cm (the
@@ -1026,9 +1026,12 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 #   So the rigid position pass is part of the sideways trouble at 4 substeps: it pushes two
 #   overlapping boxes apart in proportion to their inverse masses, so it moves the light box,
 #   not the heavy one; without it the springs alone hold the load, softly;
-# - **iterative** keeps the light box under but lets it sink 10 cm into the ground and the
-#   heavy one 9 cm into it; **shock propagation** holds both within 1 mm (the lower box is
-#   immovable for the upper one); **pymunk** squeezes the light box out within half a second.
+# - **iterative** keeps the light box under, each box 5 mm (the slop) into the one below: its
+#   position passes (`robust_positions`, lesson 08) hold the light box under the much heavier
+#   one, so only the heavy box moves out of it (on the slides' classic pass the light box
+#   sinks 10 cm into the ground and the heavy one 9 cm into it); **shock propagation** holds
+#   both within 1 mm (the lower box is immovable for the upper one); **pymunk** squeezes the
+#   light box out within half a second.
 #
 # ## 7. Which solver is the default?
 #
@@ -1040,7 +1043,7 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 #   defaults. It also wins on stacks at about equal cost once it gets 8 substeps (section 3:
 #   7.5 mm against 18 mm for 20 sweeps on the pyramid of base 20, 1.9 mm against 7.2 for 40);
 # - **it ties** on pyramids with the defaults, where its contacts are capped at 30 Hz: 30
-#   against 28 mm at base 20, 122 against 130 mm at base 40, both at rest; it sags more on small
+#   against 28 mm at base 20, 122 against 129 mm at base 40, both at rest; it sags more on small
 #   stacks (2.0 against 0.70 mm at base 5);
 # - **it loses** on the 400:1 boxes, where the light box is squeezed out at 8.5 s, and its
 #   bounces fall shorter (apexes 3%, 10%, 26% below $e^{2n}h$, against 0.3%, 6%, 13%).

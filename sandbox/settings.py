@@ -100,11 +100,12 @@ class Settings:
         choices=PENETRATIONS,
     )
     robust_positions: bool = _setting(
-        False,
+        True,
         "boolean",
-        "position passes from the ground up, the lower body of two layers held, and overlap "
-        "present at the start of a step pushed out at most at max_push_speed: overlapping "
-        "spawns and heavy-on-light stacks hold (off: the classic pass the lessons show)",
+        "position passes from the ground up, a lower body held under a much heavier one, and "
+        "overlap present at the start of a step pushed out at most at max_push_speed: overlapping "
+        "spawns and heavy-on-light stacks hold (off: the slides' classic pass; the soft "
+        "solver always takes the classic pass)",
     )
     renormalise: bool = _setting(
         True, "boolean", "renormalise matrix and complex orientations every step"
