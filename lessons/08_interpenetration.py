@@ -293,7 +293,7 @@ print(f"wrote {len(runs[0])} frames to {gif.name}")
 #   heavy one, so the overlap the heavy box makes each step is fixed by squeezing the light
 #   box out sideways.
 #
-# `robust_positions` (on by default; the soft step keeps the classic pass) changes two things.
+# `robust_positions` (on by default) changes two things.
 # The contacts are visited in layers from the ground up (`shock.contact_layers`: the bodies
 # touching the ground are layer 1, those on them layer 2, ...), and in a contact between two
 # layers where the upper body is more than twice as heavy (or the lower one is the ground) only

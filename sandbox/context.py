@@ -39,9 +39,14 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     ctx["warm_start"] = s.warm_start and s.accumulate_impulses and s.solver in KEEPS_IMPULSES
     ctx["position_correction"] = s.position_correction
     ctx["penetration"] = PENETRATIONS.index(s.penetration)
-    # the soft step's contacts carry their own sag (g / omega^2 per load): the layered passes
-    # would fight it, so it keeps the classic pass (the soft step lesson)
-    ctx["robust_positions"] = s.robust_positions and s.solver != "soft"
+    ctx["robust_positions"] = s.robust_positions
+    # the soft step's contacts carry their own sag under a heavy load (g / omega^2 per load):
+    # holding the light body would fight it, so only overlap makes its passes go in layers
+    ctx["hold_heavier"] = s.robust_positions and s.solver != "soft"
+    # overlap beyond the slop plus one step's bounded push (m) is pushed out at max_push_speed
+    # (sandbox.penetration.allowed_separation); infinite: never
+    deep = s.slop + s.max_push_speed * dt
+    ctx["deep_overlap"] = deep if s.robust_positions else np.inf
     ctx["slop"], ctx["baumgarte"] = s.slop, s.baumgarte
     ctx["restitution_threshold"] = s.restitution_threshold
     # at least as far as gravity moves a body from rest in one step (|g| dt^2), so a resting

@@ -97,19 +97,23 @@ def counting_order(key, top: int):
 
 
 @njit
-def needs_layers(contacts, k: int, bodies, deep: float, gap: float) -> bool:
+def needs_layers(contacts, k: int, bodies, deep, gap: float) -> bool:
     """Whether this step's position passes must go in layers (``settings.robust_positions``):
-    a contact began the step more than ``deep`` (m: the slop plus the bounded push) into
-    overlap, or two touching bodies differ in mass more than ``HOLD_RATIO`` times. Otherwise
-    the layered passes would do what the classic ones do (no overlap for the bounded push, no
-    body to hold), so the classic ones run: the same results, without sorting into layers."""
+    a contact began the step more than ``deep[0]`` (m: the slop plus the bounded push) into
+    overlap, or (when ``deep[1]``: not in the soft step) two touching bodies differ in mass
+    more than ``HOLD_RATIO`` times. Otherwise the layered passes would do what the classic
+    ones do (no overlap for the bounded push, no body to hold), so the classic ones run: the
+    same results, without sorting into layers."""
+    depth, heavier = deep
     for i in range(k):
         c = contacts[i]
         if not touching(c, gap):
             continue
         for j in range(c["count"]):
-            if c["points"][j]["depth"] > deep:
+            if c["points"][j]["depth"] > depth:
                 return True
+        if not heavier:
+            continue
         im_a, im_b = bodies[c["a"]]["inv_mass"], bodies[c["b"]]["inv_mass"]
         if im_a > 0.0 and im_b > 0.0 and max(im_a, im_b) > HOLD_RATIO * min(im_a, im_b):
             return True
@@ -306,7 +310,8 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     robust = ctx["robust_positions"]
     push = ctx["max_push_speed"] * ctx["dt"] if robust else np.inf
     gap = ctx["touch_margin"]
-    layered = robust and needs_layers(contacts, k, bodies, slop + push, gap)
+    deep = (ctx["deep_overlap"], ctx["hold_heavier"])
+    layered = robust and needs_layers(contacts, k, bodies, deep, gap)
     layering = position_order(contacts, k, bodies, layered, gap)
     bounds = (slop, push)
     for _ in range(ctx["position_iterations"]):

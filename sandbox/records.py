@@ -241,6 +241,8 @@ CONTEXT = np.dtype(
         ("position_correction", np.bool_),
         ("penetration", I8),  # index into sandbox.settings.PENETRATIONS
         ("robust_positions", np.bool_),  # position passes from the ground up (shock order)
+        ("hold_heavier", np.bool_),  # ... also in layers when a body rests on a much lighter one
+        ("deep_overlap", F8),  # m: overlap at a step's start beyond which the push is bounded
         ("slop", F8),
         ("baumgarte", F8),
         ("restitution_threshold", F8),

@@ -105,7 +105,7 @@ class Settings:
         "position passes from the ground up, a lower body held under a much heavier one, and "
         "overlap present at the start of a step pushed out at most at max_push_speed: overlapping "
         "spawns and heavy-on-light stacks hold (off: the slides' classic pass; the soft "
-        "solver always takes the classic pass)",
+        "step holds no lighter body, its contacts carry their own sag)",
     )
     renormalise: bool = _setting(
         True, "boolean", "renormalise matrix and complex orientations every step"

@@ -100,9 +100,14 @@ def separation_now(c, p, bodies) -> float:
 
 
 @njit
-def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, max_push: float) -> None:
+def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     """One contact: the normal impulses (soft, or rigid without bias in the relax pass), then
-    friction within the cone of the current normal impulse (Box2D v3's order)."""
+    friction within the cone of the current normal impulse (Box2D v3's order). ``push`` =
+    (max_push_speed (m/s), deep (m)): a point that began the step more than ``deep`` into
+    overlap gets no push from the bias; the position stage takes it out at a bounded speed
+    (``settings.robust_positions``), where the pushes of many overlapping neighbours would add
+    up to tens of m/s here."""
+    max_push, deep = push
     nx, ny = c["normal"][0], c["normal"][1]
     mass = masses(c)
     va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
@@ -112,7 +117,7 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, max_push: float)
         bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
         if s > 0.0:
             bias = s * inv_h  # speculative: the gap may close within this substep
-        elif use_bias:
+        elif use_bias and p["depth"] <= deep:
             bias = max(c["soft_mass_scale"] * c["soft_bias_rate"] * s, -max_push)
             mass_scale, impulse_scale = c["soft_mass_scale"], c["soft_impulse_scale"]
         vn = normal_speed(va, vb, p, nx, ny)
@@ -139,10 +144,11 @@ def solve_soft(contacts, k: int, bodies, context, use_bias: bool) -> None:
     """One pass over the first ``k`` contacts: with the soft bias (solve) or without (relax)."""
     ctx = context[0]
     inv_h = ctx["substeps"] / ctx["dt"]
+    push = (ctx["max_push_speed"], ctx["deep_overlap"])
     # contacts between moving bodies first, then those with a body that cannot move: the
     # ground has the last word in each pass, so what rests on it is not pushed into it
     for fixed in (False, True):
         for i in range(k):
             c = contacts[i]
             if (c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0) == fixed:
-                solve_soft_contact(c, bodies, inv_h, use_bias, ctx["max_push_speed"])
+                solve_soft_contact(c, bodies, inv_h, use_bias, push)
