@@ -35,6 +35,7 @@ from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.shock import contact_layers, hold_lower, touching
+from sandbox.solvers.soft import load_sag
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
 METHODS = ("half", "mass_weighted", "impulse")  # settings.penetration, in code order
@@ -110,7 +111,7 @@ def needs_layers(contacts, k: int, bodies, deep, gap: float) -> bool:
         if not touching(c, gap):
             continue
         for j in range(c["count"]):
-            if c["points"][j]["depth"] > depth:
+            if excess_depth(c, c["points"][j]) > depth:
                 return True
         if not heavier:
             continue
@@ -149,13 +150,21 @@ def holds(c, bodies, layer) -> bool:
 
 
 @njit
-def allowed_separation(p, slop: float, push: float) -> float:
+def allowed_separation(c, p, slop: float, push: float) -> float:
     """The separation a point is pushed out to this step (m): -slop, except that an overlap
     already there when the step began comes out by at most ``push`` (m, ``max_push_speed``
     times dt), so bodies spawned inside one another separate at a bounded speed instead of
     being fired apart (and through the ground). What the step's own motion pushed in is taken
     out entirely. ``push`` is infinite unless ``settings.robust_positions`` is on."""
-    return min(-slop, -p["depth"] + push)
+    return min(-slop, -excess_depth(c, p) + push)
+
+
+@njit
+def excess_depth(c, p) -> float:
+    """How deep (m) a contact point began the step, less what its load explains: in the soft
+    step a loaded contact sinks by design (:func:`sandbox.solvers.soft.load_sag`), and only
+    overlap beyond that counts as deep; the rigid solvers keep no such sag (0)."""
+    return p["depth"] - load_sag(c, p)
 
 
 @njit
@@ -173,7 +182,7 @@ def push_apart(contacts, k: int, bodies, weighted: bool, bounds, layering) -> fl
             p = c["points"][j]
             sep = separation(c, p, bodies)[0]
             worst = min(worst, sep)
-            deepest = max(deepest, allowed_separation(p, slop, push) - sep)
+            deepest = max(deepest, allowed_separation(c, p, slop, push) - sep)
         im_a, _, im_b, _ = position_masses(c, bodies, layer)
         if deepest <= 0.0 or im_a + im_b == 0.0:
             continue
@@ -249,7 +258,7 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
                     c, p, bodies
                 )
                 worst = min(worst, sep)
-                e[j] = min(sep - allowed_separation(p, slop, push), 0.0)
+                e[j] = min(sep - allowed_separation(c, p, slop, push), 0.0)
             if e[0] < 0.0 or e[1] < 0.0:
                 push_points(c, bodies, mass, (e[0], e[1]), arms)
                 moved = True
@@ -258,7 +267,7 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
             p = c["points"][j]
             sep, rax, ray, rbx, rby = separation(c, p, bodies)
             worst = min(worst, sep)
-            gap = sep - allowed_separation(p, slop, push)
+            gap = sep - allowed_separation(c, p, slop, push)
             error = min(max(beta * gap, -MAX_CORRECTION), 0.0)
             if error == 0.0:
                 continue  # within the slop: nothing to push

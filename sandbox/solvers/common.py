@@ -138,6 +138,7 @@ def prepare_contacts(contacts, k: int, bodies, beta: float, context) -> None:
         c["inv_mass_a"], c["inv_moment_a"] = a["inv_mass"], a["inv_moment"]
         c["inv_mass_b"], c["inv_moment_b"] = b["inv_mass"], b["inv_moment"]
         c["rebound"] = 0.0
+        c["soft_impulse_scale"] = 0.0  # a rigid contact: no load sag (the soft step sets it)
         for j in range(2):
             p = c["points"][j]
             p["normal_impulse"] = p["tangent_impulse"] = 0.0

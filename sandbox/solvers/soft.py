@@ -100,13 +100,24 @@ def separation_now(c, p, bodies) -> float:
 
 
 @njit
+def load_sag(c, p) -> float:
+    """How far (m) a soft contact point sinks under the load it carries: at rest the impulse
+    of a substep, lambda, holds it where the bias and the leak of the accumulated impulse
+    balance, mass_scale bias_rate C m_eff = -impulse_scale lambda, so
+    -C = impulse_scale lambda / (mass_scale bias_rate m_eff) = lambda / (m_eff h omega^2)
+    (the g / omega^2 per load of the soft step lesson)."""
+    rate = c["soft_mass_scale"] * c["soft_bias_rate"] * p["normal_mass"]
+    return c["soft_impulse_scale"] * p["normal_impulse"] / rate if rate > 0.0 else 0.0
+
+
+@njit
 def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     """One contact: the normal impulses (soft, or rigid without bias in the relax pass), then
     friction within the cone of the current normal impulse (Box2D v3's order). ``push`` =
     (max_push_speed (m/s), deep (m)): a point that began the step more than ``deep`` into
-    overlap gets no push from the bias; the position stage takes it out at a bounded speed
-    (``settings.robust_positions``), where the pushes of many overlapping neighbours would add
-    up to tens of m/s here."""
+    overlap beyond the sag its load explains (:func:`load_sag`) gets no push from the bias;
+    the position stage takes it out at a bounded speed (``settings.robust_positions``), where
+    the pushes of many overlapping neighbours would add up to tens of m/s here."""
     max_push, deep = push
     nx, ny = c["normal"][0], c["normal"][1]
     mass = masses(c)
@@ -117,7 +128,7 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
         bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
         if s > 0.0:
             bias = s * inv_h  # speculative: the gap may close within this substep
-        elif use_bias and p["depth"] <= deep:
+        elif use_bias and p["depth"] - load_sag(c, p) <= deep:
             bias = max(c["soft_mass_scale"] * c["soft_bias_rate"] * s, -max_push)
             mass_scale, impulse_scale = c["soft_mass_scale"], c["soft_impulse_scale"]
         vn = normal_speed(va, vb, p, nx, ny)
