@@ -1017,8 +1017,8 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # - **soft, defaults**: from 1 s to 7 s the heavy box sits 65 to 69 mm deep in the light one
 #   (the left plot) and the light box about as deep in the ground, while the light box is
 #   worked out sideways, slowly at first and then faster, the heavy box tilting over it, until
-#   it is out from under at 8.5 s (the table's worst values come from the landing in the first
-#   half second, 84 mm into the ground, and from after 8.5 s, when both boxes tip over);
+#   it is out from under at 8.6 s (the table's worst values come from the landing in the first
+#   half second, 84 mm into the ground, and from after 8.6 s, when both boxes tip over);
 # - **soft, 8 substeps**: it stays under; the light box sinks 20 mm into the ground and the
 #   heavy one 22 mm into it (the bound is 2 cm);
 # - **soft, position pass off**: it stays under too, but the heavy box ends 136 mm deep in the
@@ -1045,7 +1045,7 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # - **it ties** on pyramids with the defaults, where its contacts are capped at 30 Hz: 30
 #   against 28 mm at base 20, 122 against 130 mm at base 40, both at rest; it sags more on small
 #   stacks (2.0 against 0.70 mm at base 5);
-# - **it loses** on the 400:1 boxes, where the light box is squeezed out at 8.5 s, and its
+# - **it loses** on the 400:1 boxes, where the light box is squeezed out at 8.6 s, and its
 #   bounces fall shorter (apexes 3%, 10%, 26% below $e^{2n}h$, against 0.3%, 6%, 13%).
 #   8 substeps fix the boxes (the light box under and 2 cm deep) and make the pyramid four
 #   times stiffer (3.0 cm down), at a higher cost per step;
