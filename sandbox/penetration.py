@@ -98,14 +98,15 @@ def counting_order(key, top: int):
 
 
 @njit
-def needs_layers(contacts, k: int, bodies, deep, gap: float) -> bool:
-    """Whether this step's position passes must go in layers (``settings.robust_positions``):
-    a contact began the step more than ``deep[0]`` (m: the slop plus the bounded push) into
-    overlap, or (when ``deep[1]``: not in the soft step) two touching bodies differ in mass
-    more than ``HOLD_RATIO`` times. Otherwise the layered passes would do what the classic
-    ones do (no overlap for the bounded push, no body to hold), so the classic ones run: the
-    same results, without sorting into layers."""
-    depth, heavier = deep
+def needs_layers(contacts, k: int, bodies, triggers, gap: float) -> bool:
+    """Whether this step's position passes must go in layers (``settings.robust_positions``).
+    ``triggers`` = (deep (m), heavier): a contact began the step more than ``deep`` (the slop
+    plus the bounded push) into overlap beyond its load's sag (:func:`excess_depth`), or, when
+    ``heavier`` (not in the soft step), two touching bodies differ in mass more than
+    ``HOLD_RATIO`` times. Otherwise the layered passes would do what the classic ones do (no
+    overlap for the bounded push, no body to hold), so the classic ones run: the same
+    results, without sorting into layers."""
+    depth, heavier = triggers
     for i in range(k):
         c = contacts[i]
         if not touching(c, gap):
@@ -128,10 +129,9 @@ def position_masses(c, bodies, layer) -> tuple[float, float, float, float]:
     more than ``HOLD_RATIO`` times heavier, which would otherwise squeeze it out."""
     a, b = bodies[c["a"]], bodies[c["b"]]
     mass = (a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"])
-    la, lb = layer[c["a"]], layer[c["b"]]
     if not holds(c, bodies, layer):
         return mass
-    return hold_lower(mass, la, lb)
+    return hold_lower(mass, layer[c["a"]], layer[c["b"]])
 
 
 @njit
@@ -319,8 +319,8 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     robust = ctx["robust_positions"]
     push = ctx["max_push_speed"] * ctx["dt"] if robust else np.inf
     gap = ctx["touch_margin"]
-    deep = (ctx["deep_overlap"], ctx["hold_heavier"])
-    layered = robust and needs_layers(contacts, k, bodies, deep, gap)
+    triggers = (ctx["deep_overlap"], ctx["hold_heavier"])
+    layered = robust and needs_layers(contacts, k, bodies, triggers, gap)
     layering = position_order(contacts, k, bodies, layered, gap)
     bounds = (slop, push)
     for _ in range(ctx["position_iterations"]):

@@ -23,7 +23,10 @@ velocities the next substep starts from carry no push-out speed; after the subst
 position stage every solver shares (``sandbox.penetration.fix_positions``: only what sank
 beyond the slop) and the restitution pass. Contacts with a static body are twice as stiff, as
 in Box2D (bodies are not pushed through the ground). Overlap is pushed out at most at
-``max_push_speed`` (m/s).
+``max_push_speed`` (m/s); a point that began the step deeper than its load's sag explains
+(:func:`load_sag`) by more than the slop plus one step of that push gets no push from the bias
+at all and is left to the position stage, which takes it out at that bounded speed (the
+pushes of a pile's many overlapping pairs would otherwise add up to tens of m/s).
 
 Why substeps beat iterations at equal cost: an iteration shares one velocity error out among
 the constraints; a substep also moves the bodies, so each constraint then sees its real,
