@@ -63,7 +63,7 @@ import sandbox.step
 import scenes
 from sandbox.build import build_world
 from sandbox.jit import njit
-from sandbox.narrowphase import collide_into, collide_pair, joined, place_polygons, within_reach
+from sandbox.narrowphase import collide_into, pair_manifold, place_polygons
 from sandbox.scene import validate_scene
 from sandbox.step import STAGES, StageTimer
 
@@ -77,40 +77,14 @@ STATE = ("com", "vel", "omega", "angle")
 
 
 # --- the two-thread narrowphase --------------------------------------------------------------
-@njit
-def collide_slot(q, pairs, shapes, wp, bodies, joints, margin, c) -> bool:
-    """Pair q's manifold into CONTACT record ``c``, as :func:`collide_into` writes it; False
-    (``c`` untouched) when there is none."""
-    i, j = pairs[q, 0], pairs[q, 1]
-    a, b = shapes[i]["body"], shapes[j]["body"]
-    if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
-        return False
-    if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
-        return False
-    count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = collide_pair(i, j, shapes, wp, bodies, margin)
-    if count == 0:
-        return False
-    c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
-    c["normal"][0], c["normal"][1] = nx, ny
-    c["friction"] = shapes[i]["friction"] * shapes[j]["friction"]
-    c["restitution"] = shapes[i]["restitution"] * shapes[j]["restitution"]
-    p = c["points"][0]
-    p["point"][0], p["point"][1], p["depth"], p["feature"] = x0, y0, d0, f0
-    p = c["points"][1]
-    if count == 2:
-        p["point"][0], p["point"][1], p["depth"], p["feature"] = x1, y1, d1, f1
-    else:
-        p["point"][0] = p["point"][1] = p["depth"] = 0.0
-        p["feature"] = -1
-    return True
-
-
 @njit(parallel=True)
 def collide_slots(pairs, npairs, shapes, wp, bodies, joints, margin, contacts) -> None:
     """Pair q's manifold into ``contacts[q]`` (count 0 when none), the pairs shared among
     numba's threads: each record is written by one thread only."""
     for q in numba.prange(npairs):
-        if not collide_slot(q, pairs, shapes, wp, bodies, joints, margin, contacts[q]):
+        if not pair_manifold(
+            pairs[q, 0], pairs[q, 1], shapes, wp, bodies, joints, margin, contacts[q]
+        ):
             contacts[q]["count"] = 0
 
 

@@ -143,35 +143,39 @@ def collide_into(pairs, npairs, shapes, vertices, bodies, joints, margin, contac
 
     ``margin`` (m) keeps points with a gap up to ``margin`` (speculative contacts)."""
     wp = place_polygons(shapes, vertices, bodies)
-    n_bodies = bodies.shape[0]
     k = 0
-    for q in range(npairs):
-        i, j = pairs[q, 0], pairs[q, 1]
-        a, b = shapes[i]["body"], shapes[j]["body"]
-        if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
-            continue
-        if joints.shape[0] > 0 and joined(joints, n_bodies, a, b):
-            continue
-        count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = collide_pair(
-            i, j, shapes, wp, bodies, margin
-        )
-        if count == 0:
-            continue
-        c = contacts[k]
-        c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
-        c["normal"][0], c["normal"][1] = nx, ny
-        c["friction"] = shapes[i]["friction"] * shapes[j]["friction"]
-        c["restitution"] = shapes[i]["restitution"] * shapes[j]["restitution"]
-        p = c["points"][0]
-        p["point"][0], p["point"][1], p["depth"], p["feature"] = x0, y0, d0, f0
-        p = c["points"][1]
-        if count == 2:
-            p["point"][0], p["point"][1], p["depth"], p["feature"] = x1, y1, d1, f1
-        else:
-            p["point"][0] = p["point"][1] = p["depth"] = 0.0
-            p["feature"] = -1
-        k += 1
+    for q in range(npairs):  # contacts[k] exists: k <= q < npairs <= len(contacts)
+        if pair_manifold(pairs[q, 0], pairs[q, 1], shapes, wp, bodies, joints, margin, contacts[k]):
+            k += 1
     return k
+
+
+@njit
+def pair_manifold(i: int, j: int, shapes, wp, bodies, joints, margin: float, c) -> bool:
+    """Shape pair (i, j)'s manifold into the CONTACT record ``c``; False (``c`` untouched) when
+    the shapes share a body or a joint, are out of reach or do not touch. ``wp``: the placed
+    polygons (:func:`place_polygons`)."""
+    a, b = shapes[i]["body"], shapes[j]["body"]
+    if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
+        return False
+    if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
+        return False
+    count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = collide_pair(i, j, shapes, wp, bodies, margin)
+    if count == 0:
+        return False
+    c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
+    c["normal"][0], c["normal"][1] = nx, ny
+    c["friction"] = shapes[i]["friction"] * shapes[j]["friction"]
+    c["restitution"] = shapes[i]["restitution"] * shapes[j]["restitution"]
+    p = c["points"][0]
+    p["point"][0], p["point"][1], p["depth"], p["feature"] = x0, y0, d0, f0
+    p = c["points"][1]
+    if count == 2:
+        p["point"][0], p["point"][1], p["depth"], p["feature"] = x1, y1, d1, f1
+    else:
+        p["point"][0] = p["point"][1] = p["depth"] = 0.0
+        p["feature"] = -1
+    return True
 
 
 def collide(pairs, shapes, vertices, bodies, margin: float = 0.0, joints=None):
