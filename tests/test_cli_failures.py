@@ -243,7 +243,7 @@ def test_a_signal_during_a_gif_render_exits_quietly_and_cleans_up(tmp_path, sign
         time.sleep(0.02)
     proc.send_signal(signum)  # rendering: 600 frames take seconds
     out, err = proc.communicate(timeout=120)
-    assert proc.returncode == status
+    assert proc.returncode == status, err
     assert err == "" and out == ""  # quietly: no traceback, no summary, no "wrote" line
     assert_untouched(tmp_path, files)  # temporaries of the trace and the GIF removed
 
@@ -366,3 +366,25 @@ def test_compare_figures_with_mathtext_names(tmp_path, capsys):
     out = tmp_path / "c"
     assert run("compare", scene(tmp_path, data), "--steps", 5, "--out", out, "--no-gif") == 0
     assert {p.name for p in out.iterdir()} >= {"deviation.png", "energy.png", "summary.txt"}
+
+
+def test_an_interrupt_that_comes_back_as_another_error_still_exits_quietly(capsys):
+    # Ctrl-C inside a C extension's callback (e.g. a GIF encoder writing through Python) can
+    # surface as SystemError with the KeyboardInterrupt as its cause: still 130, no line;
+    # a stop signal behind an error keeps its own status; a plain error is still a failure
+    from sandbox.cli.exits import Stopped, run_command
+
+    def raise_over(interrupt: BaseException):
+        def command() -> int:
+            try:
+                raise interrupt
+            except BaseException as inner:
+                raise SystemError("returned a result with an exception set") from inner
+
+        return command
+
+    assert run_command(raise_over(KeyboardInterrupt())) == 130
+    assert run_command(raise_over(Stopped(15, 143))) == 143
+    assert capsys.readouterr().err == ""
+    assert run_command(raise_over(ValueError("boom"))) == 1
+    assert capsys.readouterr().err.startswith("error:")

@@ -159,12 +159,31 @@ def run_command(command: Callable[[], int]) -> int:
         return 0
     except Exception as err:
         _traceback_if_debug()
+        stop = interrupt_behind(err)
+        if stop is not None:
+            return stop
         status, line = describe(err)
         print(line, file=sys.stderr)
         return status
     for line in summary:
         print(line, file=sys.stderr)
     return status
+
+
+def interrupt_behind(err: BaseException) -> int | None:
+    """The exit status of a Ctrl-C or a stop signal that ``err`` was raised over, if any: an
+    interrupt arriving inside a C extension's callback (a GIF encoder writing through Python)
+    comes back out as another error, with the interrupt as its cause or context."""
+    seen: set[int] = set()
+    link: BaseException | None = err
+    while link is not None and id(link) not in seen:
+        seen.add(id(link))
+        if isinstance(link, KeyboardInterrupt):
+            return 130
+        if isinstance(link, Stopped):
+            return link.status
+        link = link.__cause__ or link.__context__
+    return None
 
 
 def _traceback_if_debug() -> None:
