@@ -112,7 +112,8 @@ def needs_layers(contacts, k: int, bodies, triggers, gap: float) -> bool:
         if not touching(c, gap):
             continue
         for j in range(c["count"]):
-            if excess_depth(c, c["points"][j]) > depth:
+            p = c["points"][j]
+            if p["depth"] > depth and excess_depth(c, p) > depth:
                 return True
         if not heavier:
             continue
@@ -123,15 +124,16 @@ def needs_layers(contacts, k: int, bodies, triggers, gap: float) -> bool:
 
 
 @njit
-def position_masses(c, bodies, layer) -> tuple[float, float, float, float]:
-    """(1/m_a, 1/I_a, 1/m_b, 1/I_b) for the position passes: the bodies' own, except that the
-    lower body of two layers is held (:func:`sandbox.solvers.shock.hold_lower`) under a body
-    more than ``HOLD_RATIO`` times heavier, which would otherwise squeeze it out."""
+def position_masses(c, bodies, layer):
+    """((1/m_a, 1/I_a, 1/m_b, 1/I_b), held) for the position passes: the bodies' own, except
+    that the lower body of two layers is held (:func:`sandbox.solvers.shock.hold_lower`) when
+    :func:`holds` says so (under a body more than ``HOLD_RATIO`` times heavier, which would
+    otherwise squeeze it out)."""
     a, b = bodies[c["a"]], bodies[c["b"]]
     mass = (a["inv_mass"], a["inv_moment"], b["inv_mass"], b["inv_moment"])
     if not holds(c, bodies, layer):
-        return mass
-    return hold_lower(mass, layer[c["a"]], layer[c["b"]])
+        return mass, False
+    return hold_lower(mass, layer[c["a"]], layer[c["b"]]), True
 
 
 @njit
@@ -156,6 +158,8 @@ def allowed_separation(c, p, slop: float, push: float) -> float:
     times dt), so bodies spawned inside one another separate at a bounded speed instead of
     being fired apart (and through the ground). What the step's own motion pushed in is taken
     out entirely. ``push`` is infinite unless ``settings.robust_positions`` is on."""
+    if p["depth"] <= slop + push:  # the usual case: no load sag to look up (it only lowers it)
+        return -slop
     return min(-slop, -excess_depth(c, p) + push)
 
 
@@ -183,7 +187,7 @@ def push_apart(contacts, k: int, bodies, weighted: bool, bounds, layering) -> fl
             sep = separation(c, p, bodies)[0]
             worst = min(worst, sep)
             deepest = max(deepest, allowed_separation(c, p, slop, push) - sep)
-        im_a, _, im_b, _ = position_masses(c, bodies, layer)
+        im_a, _, im_b, _ = position_masses(c, bodies, layer)[0]
         if deepest <= 0.0 or im_a + im_b == 0.0:
             continue
         if weighted:  # option 2: m2 / (m1 + m2) = (1/m1) / (1/m1 + 1/m2)
@@ -247,9 +251,9 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
         c = contacts[order[q]]
         a, b = bodies[c["a"]], bodies[c["b"]]
         nx, ny = c["normal"][0], c["normal"][1]
-        mass = position_masses(c, bodies, layer)
+        mass, held = position_masses(c, bodies, layer)
         im_a, ii_a, im_b, ii_b = mass
-        if holds(c, bodies, layer):
+        if held:
             e = [0.0, 0.0]
             arms = [0.0] * 8
             for j in range(c["count"]):

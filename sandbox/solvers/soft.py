@@ -131,7 +131,7 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
         bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
         if s > 0.0:
             bias = s * inv_h  # speculative: the gap may close within this substep
-        elif use_bias and p["depth"] - load_sag(c, p) <= deep:
+        elif use_bias and (p["depth"] <= deep or p["depth"] - load_sag(c, p) <= deep):
             bias = max(c["soft_mass_scale"] * c["soft_bias_rate"] * s, -max_push)
             mass_scale, impulse_scale = c["soft_mass_scale"], c["soft_impulse_scale"]
         vn = normal_speed(va, vb, p, nx, ny)
