@@ -7,12 +7,13 @@ For example, the code before a change in a second worktree against this one::
     git worktree add ../before HEAD~3
     python benchmarks/ab.py rain_5000 --steps 300 --rounds 7 ../before .
 
-Each round runs SCENE (a name from ``SCENES`` below, built from ``scenes.py``) once with
-CHECKOUT_A's ``sandbox`` and once with CHECKOUT_B's, each in its own process (so each has its
-own compiled kernels, in its own compile cache under the checkout), alternating, and times N
-steps after 5 of warm-up: CPU time of the stepping thread per step. On a shared machine the
-time of one run moves by tens of percent; the median of the rounds' ratios B / A is what to
-read, with the smallest and the largest.
+Each round runs SCENE (a name from ``SCENES`` below, built from ``scenes.py``; a name ending
+in ``_soft``: that scene under ``solver: soft``) once with CHECKOUT_A's ``sandbox`` and once
+with CHECKOUT_B's, each in its own process (so each has its own compiled kernels, in its own
+compile cache under the checkout), alternating, and times N steps after 5 of warm-up: CPU
+time of the stepping thread per step. On a shared machine the time of one run moves by tens
+of percent; the median of the rounds' ratios B / A is what to read, with the smallest and
+the largest.
 """
 
 from __future__ import annotations
@@ -40,10 +41,15 @@ def scene_named(name: str) -> dict:
         "pyramid_20": lambda: scenes.pyramid(20),
         "pyramid_40": lambda: scenes.pyramid(40),
     }
-    return makers[name]()
+    base, soft, _ = name.partition("_soft")
+    spec = makers[base]()
+    if soft:  # the same scene under the soft step
+        spec.setdefault("settings", {})["solver"] = "soft"
+    return spec
 
 
 SCENES = ("ballistic", "rain_100", "rain_1000", "rain_5000", "pyramid_20", "pyramid_40")
+SCENES += tuple(f"{name}_soft" for name in SCENES if name != "ballistic")
 
 
 def time_here(name: str, steps: int) -> float:

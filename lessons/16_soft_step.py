@@ -318,8 +318,9 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 # of springs squeezed by the weight above it, which grows with the row's depth, so the top box
 # drops about four times as far each time the base doubles (2.0, 7.5, 30, 122 mm), as the
 # square of the height. At the defaults those springs are soft: the contacts between boxes run
-# at 30 Hz, not the 60 Hz of `contact_hertz` (the cap of section 3). Joints have no such cap,
-# and on the chains the soft step stretches about half as much (2.1 to 17.8 mm). Every pyramid
+# at 30 Hz, not the 60 Hz of `contact_hertz` (the cap of section 3). Joints have no such cap
+# (they are 120 Hz springs, and solved `iterations` times a substep), and on the chains the soft
+# step stretches between a quarter and a sixth as much (1.2 to 5.5 mm). Every pyramid
 # comes to rest: the soft step's largest drop in the last 5 s is its drop at 10 s to 0.05 mm
 # (in the figure the dotted line lies on the solid one).
 #
@@ -471,9 +472,10 @@ save_figure(fig, OUT / "soft_constraint.png", dpi=100)
 # $$C = \frac{s_i\,F h}{m\,s_m b} = \frac{F h}{m\,a_2 b} = \frac{F}{m\,\omega^2} = \frac{F}{k},$$
 #
 # the stretch of a spring of stiffness $k = m\omega^2$, whatever $\zeta$ and $h$. The stiffness
-# is set by the constraint's effective mass $m$, the load by whatever hangs on it. A 60 Hz
-# constraint on a 1 kg body is a spring of $1 \times (2\pi \cdot 60)^2 = 142$ kN/m: its own
-# weight stretches it $g/\omega^2 = 0.07$ mm, a 400 kg load hung from it 2.8 cm.
+# is set by the constraint's effective mass $m$, the load by whatever hangs on it. A 120 Hz
+# constraint (the joints' default) on a 1 kg body is a spring of
+# $1 \times (2\pi \cdot 120)^2 = 568$ kN/m: its own weight stretches it
+# $g/\omega^2 = 0.017$ mm, a 400 kg load hung from it 6.9 mm.
 #
 # In the engine: a pivot holds a 1 kg disc's centre to a static hook, and a second pivot holds
 # a heavier disc's centre to a point 1 m below the first disc's centre.
@@ -521,11 +523,11 @@ print_table(["masses (kg)", "soft settings", "hook joint: F/(m w^2) (mm)", "meas
             rows, 4)  # fmt: skip
 
 # %% [markdown]
-# The engine's soft joints hold exactly the static error of the formula: 0.138 mm for 1 kg under
-# 1 kg, 7.0 mm for 100 kg and 27.7 mm for 400 kg under 1 kg, at each of the two joints, to
-# 1e-10 or better. The same with 8 substeps (the error does not depend on $h$), four times as
-# much at half the frequency (110.7 mm at 30 Hz), and the same at damping ratio 1 (which is
-# still swinging a little after 10 s: 2e-5 off). Keep the 27.7 mm in mind for section 6.
+# The engine's soft joints hold exactly the static error of the formula: 0.035 mm for 1 kg under
+# 1 kg, 1.7 mm for 100 kg and 6.9 mm for 400 kg under 1 kg, at each of the two joints, to
+# 1e-10 or better. The same with 8 substeps (the error does not depend on $h$), sixteen times
+# as much at a quarter of the frequency (110.7 mm at 30 Hz), and the same at damping ratio 1.
+# Keep the 6.9 mm in mind for section 6.
 #
 # ## 3. Why substeps beat iterations at equal cost
 #
@@ -876,10 +878,10 @@ for name, view in views.items():
 #   last 5 s); its top box moved 4.6 cm sideways in 10 s, all of it while the pyramid settled
 #   (section 6), where the iterative one moved 1 mm. In the animation the soft and iterative
 #   pyramids lie almost on top of each other.
-# - **chain**: soft 10.4 mm at worst, iterative and shock 17.9 mm (shock propagation only
+# - **chain**: soft 3.9 mm at worst, iterative and shock 17.9 mm (shock propagation only
 #   changes how contacts are solved: for joints it is the iterative solver, its line lies
 #   under the iterative one), pymunk 201 mm, pairwise comes apart.
-# - **heavy chain**: only the soft step keeps it together, 47 mm at worst. Under iterative and
+# - **heavy chain**: only the soft step keeps it together, 17.5 mm at worst. Under iterative and
 #   shock it holds until about 3.5 s, then the links part (tens of metres apart by 10 s);
 #   pymunk and pairwise come apart in the first swing.
 # - **cost**: on the pyramid all of them take a few ms per step here (the table), the soft step
@@ -929,12 +931,12 @@ print_table(["pyramid of 40", "lowest top drop, 1-2 s (mm)", "highest top drop, 
 # box moved 14 mm sideways. The price is more time per step (the table).
 #
 # **The chains.** The issue asks for a worst stretch under 5 mm (20 links) and under 1 cm (the
-# heavy chain). With the defaults (4 substeps, joints at 60 Hz with damping ratio 5) and with
-# more substeps and stiffer joints:
+# heavy chain). With the defaults (4 substeps, joints at 120 Hz with damping ratio 5), with
+# Box2D's softer 60 Hz joints, and with more substeps:
 
 # %%
-CHAIN_SETTINGS = [{}, {"substeps": 8, "joint_hertz": 120.0},
-                  {"substeps": 8, "joint_hertz": 120.0, "joint_damping_ratio": 2.0}]  # fmt: skip
+CHAIN_SETTINGS = [{}, {"joint_hertz": 60.0}, {"substeps": 8},
+                  {"substeps": 8, "joint_damping_ratio": 2.0}]  # fmt: skip
 rows = []
 for name, spec in (("chain", CHAIN), ("heavy chain", HEAVY)):
     for settings in CHAIN_SETTINGS:
@@ -945,12 +947,16 @@ for name, spec in (("chain", CHAIN), ("heavy chain", HEAVY)):
 print_table(["scene", "soft settings", "worst link stretch in 10 s (mm)", "ms per step"], rows, 2)
 
 # %% [markdown]
-# With the defaults the 20-link chain stretches 10.4 mm at worst, twice the issue's 5 mm; 8
-# substeps with joints at 120 Hz give 5.5 mm, and with damping ratio 2 as well 4.5 mm, under
-# the bound, at a higher cost per step. The heavy chain stretches 47 mm with the defaults and
-# 16 mm with 8 substeps and 120 Hz, short of the issue's 1 cm. Why, the next part says.
+# With the defaults the 20-link chain stretches 3.9 mm at worst, under the issue's 5 mm. At
+# Box2D's 60 Hz it stretched 10.4 mm, twice the bound: that measurement is why the joints'
+# default is 120 Hz here. Stiffer still does not pay at 4 substeps: measured on the same chain,
+# 180 Hz gives 3.3 mm, 240 Hz 3.0 mm, but 360 Hz 8.6 mm, where $h\omega$ = 9.4 and the
+# joints' sweeps begin to overshoot. 8 substeps do not help the chain (5.5 mm, 4.5 mm with
+# damping ratio 2), and cost more per step. The heavy chain stretches 17.5 mm with the defaults
+# (47 mm at 60 Hz) and 16 to 19 mm with 8 substeps, short of the issue's 1 cm. Why, the next
+# part says.
 #
-# **Mass ratios.** Section 2's static error is the whole story: a soft constraint is a spring
+# **Mass ratios.** Section 2's static error is where it starts: a soft constraint is a spring
 # of stiffness $k = m\,\omega^2$ with $m$ its effective mass, and for two bodies of very
 # different mass $m = (1/m_a + 1/m_b + \dots)^{-1}$ is about the **light** body's. The load is
 # the heavy body's weight. So
@@ -959,12 +965,14 @@ print_table(["scene", "soft settings", "worst link stretch in 10 s (mm)", "ms pe
 # = \frac{m_{heavy}}{m_{light}}\cdot\frac{g}{\omega^2}:$$
 #
 # the error grows with the mass ratio, 0.07 mm per unit of ratio at 60 Hz: 2.8 cm at 400. The
-# heavy chain's ball (100 link masses) hangs on 1 kg links, and the stretch of every joint
-# adds up along the chain. A rigid solver has the opposite trouble (the light body's impulses
-# cannot move the heavy one, and the sweeps converge slowly), shock propagation treats the
-# lower body as immovable and does not care. Here: a 1 kg box of 1 m on the ground with a box of
-# 1 m and 400 kg resting on it, 10 s, under each engine and with the soft step's settings
-# changed. Measured: how deep the light box sank into the ground and how deep the heavy one sank
+# heavy chain's ball (100 link masses) hangs on 1 kg links: 1.7 mm of static error at each
+# 120 Hz joint. The measured 17.5 mm is ten times that: a swing released from the horizontal
+# triples the load at the bottom of its arc, and the rest is error the sweeps leave between
+# the light links and the heavy ball. A rigid solver has the opposite trouble (the light
+# body's impulses cannot move the heavy one, and the sweeps converge slowly), shock
+# propagation treats the lower body as immovable and does not care. Here: a 1 kg box of 1 m on
+# the ground with a box of 1 m and 400 kg resting on it, 10 s, under each engine and with the
+# soft step's settings changed. Measured: how deep the light box sank into the ground and how deep the heavy one sank
 # into the light one (worst over the run), and how far the light box ended up from under the
 # heavy one (it is squeezed out when that exceeds half a box, 0.5 m).
 
@@ -1038,9 +1046,9 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # The scene contract (`DESIGN.md`) fixes `iterative` as the default solver, and these
 # measurements do not make the soft step, with its current defaults, a better choice everywhere:
 #
-# - **the soft step wins** on long chains (10.4 mm against 17.9 mm) and on heavy loads on
-#   chains (47 mm where the iterative chain comes apart): its joints are 60 Hz springs at the
-#   defaults. It also wins on stacks at about equal cost once it gets 8 substeps (section 3:
+# - **the soft step wins** on long chains (3.9 mm against 17.9 mm) and on heavy loads on
+#   chains (17.5 mm where the iterative chain comes apart): its joints are 120 Hz springs at
+#   the defaults. It also wins on stacks at about equal cost once it gets 8 substeps (section 3:
 #   7.5 mm against 18 mm for 20 sweeps on the pyramid of base 20, 1.9 mm against 7.2 for 40);
 # - **it ties** on pyramids with the defaults, where its contacts are capped at 30 Hz: 30
 #   against 28 mm at base 20, 122 against 130 mm at base 40, both at rest; it sags more on small
@@ -1063,22 +1071,23 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # Predict first, then run the cell under the question, then open the answer.
 #
 # **1.** The 400 kg disc hangs under the 1 kg disc (section 2, position pass off). Make the
-# joints twice as stiff, `joint_hertz = 120`. What static stretch do you expect at each joint?
+# joints half as stiff, Box2D's `joint_hertz = 60`. What static stretch do you expect at each
+# joint?
 
 # %%
-world_e1 = hanging(1.0, 400.0, joint_hertz=120.0)
+world_e1 = hanging(1.0, 400.0, joint_hertz=60.0)
 for _ in range(round(DURATION / DT)):
     world_e1.step()
-print("120 Hz: joint stretches " + ", ".join(f"{1000 * j.anchor_error():.4f} mm"
+print("60 Hz: joint stretches " + ", ".join(f"{1000 * j.anchor_error():.4f} mm"
                                              for j in world_e1.joints))  # fmt: skip
 
 # %% [markdown]
 # <details><summary>Answer</summary>
 #
-# The static error is $F/(m\,\omega^2)$: twice the frequency is four times the stiffness, so a
-# quarter of the 27.68 mm of section 2: 6.92 mm at each joint. The run prints 6.9198 mm twice
-# ($400 \times 9.81 \times 1.0025 / (2\pi \cdot 120)^2$ for the second joint, $401 \times 9.81 /
-# (2\pi \cdot 120)^2$ for the first: the same number).
+# The static error is $F/(m\,\omega^2)$: half the frequency is a quarter of the stiffness, so
+# four times the 6.92 mm of section 2: 27.68 mm at each joint. The run prints 27.6790 mm twice
+# ($400 \times 9.81 \times 1.0025 / (2\pi \cdot 60)^2$ for the second joint, $401 \times 9.81 /
+# (2\pi \cdot 60)^2$ for the first: the same number).
 #
 # </details>
 #

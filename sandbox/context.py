@@ -16,7 +16,7 @@ SOFT_DEFAULTS = (
     ("substeps", 4),
     ("contact_hertz", 60.0),
     ("contact_damping_ratio", 10.0),
-    ("joint_hertz", 60.0),
+    ("joint_hertz", 120.0),
     ("joint_damping_ratio", 5.0),
     ("max_push_speed", 3.0),
     ("sleep", False),

@@ -160,7 +160,7 @@ class Settings:
         10.0, "number", "damping ratio of soft contacts (solver: soft)", Range(0.0, 1e3), ge=0.0
     )
     joint_hertz: float = _setting(
-        60.0, "number", "stiffness of soft joints, as a frequency (solver: soft)", _HERTZ, gt=0.0
+        120.0, "number", "stiffness of soft joints, as a frequency (solver: soft)", _HERTZ, gt=0.0
     )
     joint_damping_ratio: float = _setting(
         5.0, "number", "damping ratio of soft joints (solver: soft)", Range(0.0, 1e3), ge=0.0
