@@ -947,13 +947,50 @@ for name, spec in (("chain", CHAIN), ("heavy chain", HEAVY)):
 print_table(["scene", "soft settings", "worst link stretch in 10 s (mm)", "ms per step"], rows, 2)
 
 # %% [markdown]
+# How stiff should the joints be? The default was chosen by running both chains at the default
+# 4 substeps with `joint_hertz` from 30 to 480 Hz (each run is cheap: a few hundredths of a ms
+# per step):
+
+# %%
+JOINT_HERTZ = (30.0, 60.0, 90.0, 120.0, 180.0, 240.0, 360.0, 480.0)
+BOUNDS = {"chain": 5.0, "heavy chain": 10.0}  # mm: the issue's worst stretch
+by_hertz = {(name, f): 1000 * simulate(spec, "soft", DURATION, stretch(spec),
+                                       joint_hertz=f)["value"].max()
+            for name, spec in (("chain", CHAIN), ("heavy chain", HEAVY))
+            for f in JOINT_HERTZ}  # fmt: skip
+fig, ax = plt.subplots(figsize=(7.5, 4.6))
+for (name, bound), color in zip(BOUNDS.items(), ("C4", "C1"), strict=True):
+    ax.plot(JOINT_HERTZ, [by_hertz[(name, f)] for f in JOINT_HERTZ], "o-", color=color,
+            label=f"{name}: worst stretch in 10 s")  # fmt: skip
+    ax.axhline(bound, color=color, ls="--", lw=1, label=f"{name}: the issue's bound ({bound:g} mm)")
+default_hertz = sandbox.Settings().joint_hertz
+ax.axvline(default_hertz, color="0.4", ls=":", lw=1.2,
+           label=f"default joint_hertz ({default_hertz:g} Hz)")  # fmt: skip
+ax.set(xscale="log", yscale="log", xlabel="joint_hertz (Hz), 4 substeps of 1/240 s",
+       ylabel="worst link stretch (mm)",
+       title="soft joints: stiffer helps until the substep cannot follow")  # fmt: skip
+plain_log(ax)
+ax.grid(alpha=0.3, which="both")
+ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
+fig.tight_layout()
+save_figure(fig, OUT / "joint_stiffness.png", dpi=100)
+print_table(["joint_hertz (Hz)", "h omega", "chain: worst stretch (mm)",
+             "heavy chain: worst stretch (mm)"],
+            [(f, 2 * math.pi * f * DT / 4, by_hertz[("chain", f)], by_hertz[("heavy chain", f)])
+             for f in JOINT_HERTZ], 2)  # fmt: skip
+
+# %% [markdown]
 # With the defaults the 20-link chain stretches 3.9 mm at worst, under the issue's 5 mm. At
 # Box2D's 60 Hz it stretched 10.4 mm, twice the bound: that measurement is why the joints'
-# default is 120 Hz here. Stiffer still does not pay at 4 substeps: measured on the same chain,
-# 180 Hz gives 3.3 mm, 240 Hz 3.0 mm, but 360 Hz 8.6 mm, where $h\omega$ = 9.4 and the
-# joints' sweeps begin to overshoot. 8 substeps do not help the chain (5.5 mm, 4.5 mm with
-# damping ratio 2), and cost more per step. The heavy chain stretches 17.5 mm with the defaults
-# (47 mm at 60 Hz) and 16 to 19 mm with 8 substeps, short of the issue's 1 cm. Why, the next
+# default is 120 Hz here. Stiffer still helps only a little (3.3 mm at 180 Hz, 3.0 mm at
+# 240 Hz), and past $h\omega \approx 6$ the results turn erratic: 8.6 mm at 360 Hz and 2.3 mm
+# at 480 Hz for the chain, while the heavy chain stretches more again from 240 Hz on (14, 19,
+# 46 mm): the substep no longer follows the spring, and the joints' sweeps overshoot. 180 Hz
+# would be a little better here, but $h\omega$ grows with the step: at dt = 1/30 s it would be
+# 9.4, where 360 Hz is here. 120 Hz ($h\omega = \pi$ at the default step) keeps a margin of
+# two. 8 substeps do not help the chain (5.5 mm, 4.5 mm with damping ratio 2), and cost more
+# per step. The heavy chain stretches 17.5 mm with the defaults (47 mm at 60 Hz), 12 mm at
+# best (180 Hz), and 16 to 19 mm with 8 substeps: never under the issue's 1 cm. Why, the next
 # part says.
 #
 # **Mass ratios.** Section 2's static error is where it starts: a soft constraint is a spring
