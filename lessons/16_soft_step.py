@@ -966,7 +966,7 @@ for (name, bound), color in zip(BOUNDS.items(), ("C4", "C1"), strict=True):
 default_hertz = sandbox.Settings().joint_hertz
 ax.axvline(default_hertz, color="0.4", ls=":", lw=1.2,
            label=f"default joint_hertz ({default_hertz:g} Hz)")  # fmt: skip
-ax.set(xscale="log", yscale="log", xlabel="joint_hertz (Hz), 4 substeps of 1/240 s",
+ax.set(xscale="log", yscale="log", xlabel="joint_hertz at 4 substeps of 1/240 s (Hz)",
        ylabel="worst link stretch (mm)",
        title="soft joints: stiffer helps until the substep cannot follow")  # fmt: skip
 plain_log(ax)
