@@ -143,11 +143,12 @@ def prepare_contacts(contacts, k: int, bodies, beta: float, context) -> None:
         c["inv_mass_b"], c["inv_moment_b"] = b["inv_mass"], b["inv_moment"]
         c["rebound"] = 0.0
         c["soft_impulse_scale"] = 0.0  # a rigid contact: no load sag (the soft step sets it)
+        points, count = c["points"], c["count"]
         for j in range(2):
-            p = c["points"][j]
+            p = points[j]
             p["normal_impulse"] = p["tangent_impulse"] = 0.0
             p["max_normal_impulse"] = p["bounce_impulse"] = 0.0
-            if j < c["count"]:
+            if j < count:
                 prepare_point(c, p, bodies, inv_dt, beta, slop)
         prepare_block(c)
 
