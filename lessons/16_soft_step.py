@@ -320,7 +320,7 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 # square of the height. At the defaults those springs are soft: the contacts between boxes run
 # at 30 Hz, not the 60 Hz of `contact_hertz` (the cap of section 3). Joints have no such cap
 # (they are 120 Hz springs, and solved `iterations` times a substep), and on the chains the soft
-# step stretches between a quarter and a sixth as much (1.2 to 5.5 mm). Every pyramid
+# step stretches between a third and a sixth as much (1.2 to 5.5 mm). Every pyramid
 # comes to rest: the soft step's largest drop in the last 5 s is its drop at 10 s to 0.05 mm
 # (in the figure the dotted line lies on the solid one).
 #
