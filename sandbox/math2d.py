@@ -113,15 +113,16 @@ def push_along(
 def velocity_of(bodies, i: int) -> tuple[float, float, float]:
     """Body i's (vx, vy, w)."""
     b = bodies[i]
-    return b["vel"][0], b["vel"][1], b["omega"]
+    v = b["vel"]
+    return v[0], v[1], b["omega"]
 
 
 @njit
 def set_velocity(bodies, i: int, v: tuple) -> None:
     """Write (vx, vy, w) back to body i."""
     b = bodies[i]
-    b["vel"][0] = v[0]
-    b["vel"][1] = v[1]
+    vel = b["vel"]
+    vel[0], vel[1] = v[0], v[1]
     b["omega"] = v[2]
 
 

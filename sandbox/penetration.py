@@ -47,11 +47,14 @@ HOLD_RATIO = 2.0  # layered passes hold a lower body only under one more than th
 def separation(c, p, bodies) -> tuple[float, float, float, float, float]:
     """Current separation of a contact point (m, < 0 overlapping), and its arms r_a, r_b."""
     a, b = bodies[c["a"]], bodies[c["b"]]
-    rax, ray = rotate(a["cs"][0], a["cs"][1], p["local_a"][0], p["local_a"][1])
-    rbx, rby = rotate(b["cs"][0], b["cs"][1], p["local_b"][0], p["local_b"][1])
-    dx = (b["com"][0] + rbx) - (a["com"][0] + rax)
-    dy = (b["com"][1] + rby) - (a["com"][1] + ray)
-    return -p["depth"] + dx * c["normal"][0] + dy * c["normal"][1], rax, ray, rbx, rby
+    cs_a, local_a, com_a = a["cs"], p["local_a"], a["com"]
+    cs_b, local_b, com_b = b["cs"], p["local_b"], b["com"]
+    rax, ray = rotate(cs_a[0], cs_a[1], local_a[0], local_a[1])
+    rbx, rby = rotate(cs_b[0], cs_b[1], local_b[0], local_b[1])
+    dx = (com_b[0] + rbx) - (com_a[0] + rax)
+    dy = (com_b[1] + rby) - (com_a[1] + ray)
+    n = c["normal"]
+    return -p["depth"] + dx * n[0] + dy * n[1], rax, ray, rbx, rby
 
 
 @njit

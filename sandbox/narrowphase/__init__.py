@@ -90,8 +90,8 @@ def fallback_normal(i: int, j: int, body_i, body_j) -> tuple[float, float]:
 def within_reach(shape_i, shape_j, body_i, body_j, margin: float) -> bool:
     """The shapes lie within circles of radius ``bound`` about the centres of mass: apart by
     more than the margin (and a hair, for rounding), they cannot touch."""
-    dx = body_j["com"][0] - body_i["com"][0]
-    dy = body_j["com"][1] - body_i["com"][1]
+    com_i, com_j = body_i["com"], body_j["com"]
+    dx, dy = com_j[0] - com_i[0], com_j[1] - com_i[1]
     reach = shape_i["bound"] + shape_j["bound"] + margin
     return dx * dx + dy * dy <= reach * reach * (1.0 + 1e-9) + 1e-12
 
@@ -155,8 +155,9 @@ def pair_manifold(i: int, j: int, shapes, wp, bodies, joints, margin: float, c) 
     """Shape pair (i, j)'s manifold into the CONTACT record ``c``; False (``c`` untouched) when
     the shapes share a body or a joint, are out of reach or do not touch. ``wp``: the placed
     polygons (:func:`place_polygons`)."""
-    a, b = shapes[i]["body"], shapes[j]["body"]
-    if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
+    shape_i, shape_j = shapes[i], shapes[j]
+    a, b = shape_i["body"], shape_j["body"]
+    if a == b or not within_reach(shape_i, shape_j, bodies[a], bodies[b], margin):
         return False
     if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
         return False
@@ -165,15 +166,17 @@ def pair_manifold(i: int, j: int, shapes, wp, bodies, joints, margin: float, c) 
         return False
     c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
     c["normal"][0], c["normal"][1] = nx, ny
-    c["friction"] = shapes[i]["friction"] * shapes[j]["friction"]
-    c["restitution"] = shapes[i]["restitution"] * shapes[j]["restitution"]
+    c["friction"] = shape_i["friction"] * shape_j["friction"]
+    c["restitution"] = shape_i["restitution"] * shape_j["restitution"]
     p = c["points"][0]
-    p["point"][0], p["point"][1], p["depth"], p["feature"] = x0, y0, d0, f0
+    point = p["point"]
+    point[0], point[1], p["depth"], p["feature"] = x0, y0, d0, f0
     p = c["points"][1]
+    point = p["point"]
     if count == 2:
-        p["point"][0], p["point"][1], p["depth"], p["feature"] = x1, y1, d1, f1
+        point[0], point[1], p["depth"], p["feature"] = x1, y1, d1, f1
     else:
-        p["point"][0] = p["point"][1] = p["depth"] = 0.0
+        point[0] = point[1] = p["depth"] = 0.0
         p["feature"] = -1
     return True
 

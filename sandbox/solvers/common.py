@@ -77,20 +77,24 @@ def prepare_point(c, p, bodies, inv_dt: float, beta: float, slop: float) -> None
     a, b = bodies[c["a"]], bodies[c["b"]]
     nx, ny = c["normal"][0], c["normal"][1]
     im_a, ii_a, im_b, ii_b = masses(c)
-    rax, ray = p["point"][0] - a["com"][0], p["point"][1] - a["com"][1]
-    rbx, rby = p["point"][0] - b["com"][0], p["point"][1] - b["com"][1]
-    p["local_a"][0], p["local_a"][1] = unrotate(a["cs"][0], a["cs"][1], rax, ray)
-    p["local_b"][0], p["local_b"][1] = unrotate(b["cs"][0], b["cs"][1], rbx, rby)
-    p["rn_a"], p["rn_b"] = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
-    p["rt_a"], p["rt_b"] = cross(rax, ray, ny, -nx), cross(rbx, rby, ny, -nx)
+    point = p["point"]
+    x, y = point[0], point[1]
+    com_a, cs_a, local_a = a["com"], a["cs"], p["local_a"]
+    com_b, cs_b, local_b = b["com"], b["cs"], p["local_b"]
+    rax, ray = x - com_a[0], y - com_a[1]
+    rbx, rby = x - com_b[0], y - com_b[1]
+    local_a[0], local_a[1] = unrotate(cs_a[0], cs_a[1], rax, ray)
+    local_b[0], local_b[1] = unrotate(cs_b[0], cs_b[1], rbx, rby)
+    rn_a, rn_b = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
+    rt_a, rt_b = cross(rax, ray, ny, -nx), cross(rbx, rby, ny, -nx)
+    p["rn_a"], p["rn_b"], p["rt_a"], p["rt_b"] = rn_a, rn_b, rt_a, rt_b
     # slides, "Collision Equation", step 1: k = 1/m_a + 1/m_b + (r_a x n)^2/I_a + (r_b x n)^2/I_b
-    kn = effective_mass(im_a, ii_a, im_b, ii_b, p["rn_a"], p["rn_b"])
-    kt = effective_mass(im_a, ii_a, im_b, ii_b, p["rt_a"], p["rt_b"])
+    kn = effective_mass(im_a, ii_a, im_b, ii_b, rn_a, rn_b)
+    kt = effective_mass(im_a, ii_a, im_b, ii_b, rt_a, rt_b)
     p["normal_mass"], p["tangent_mass"] = inverse_or_zero(kn), inverse_or_zero(kt)
     # the velocities have not had this step's gravity yet: the speed the bodies arrived with
-    p["approach_speed"] = normal_speed(
-        velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"]), p, nx, ny
-    )
+    va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
+    p["approach_speed"] = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n
     d = p["depth"]
     p["bias"] = d * inv_dt if d < 0.0 else beta * inv_dt * max(d - slop, 0.0)
 
@@ -139,11 +143,12 @@ def prepare_contacts(contacts, k: int, bodies, beta: float, context) -> None:
         c["inv_mass_b"], c["inv_moment_b"] = b["inv_mass"], b["inv_moment"]
         c["rebound"] = 0.0
         c["soft_impulse_scale"] = 0.0  # a rigid contact: no load sag (the soft step sets it)
+        points, count = c["points"], c["count"]
         for j in range(2):
-            p = c["points"][j]
+            p = points[j]
             p["normal_impulse"] = p["tangent_impulse"] = 0.0
             p["max_normal_impulse"] = p["bounce_impulse"] = 0.0
-            if j < c["count"]:
+            if j < count:
                 prepare_point(c, p, bodies, inv_dt, beta, slop)
         prepare_block(c)
 
@@ -179,12 +184,14 @@ def match_previous(contacts, k: int, previous, k_old: int) -> int:
         if q == k_old or previous[q]["shape_a"] != sa or previous[q]["shape_b"] != sb:
             continue
         old = previous[q]
+        old_points, old_count, points = old["points"], old["count"], c["points"]
         for j in range(c["count"]):
-            p = c["points"][j]
-            for jj in range(old["count"]):
-                if old["points"][jj]["feature"] == p["feature"]:
-                    p["normal_impulse"] = old["points"][jj]["normal_impulse"]
-                    p["tangent_impulse"] = old["points"][jj]["tangent_impulse"]
+            p = points[j]
+            for jj in range(old_count):
+                o = old_points[jj]
+                if o["feature"] == p["feature"]:
+                    p["normal_impulse"] = o["normal_impulse"]
+                    p["tangent_impulse"] = o["tangent_impulse"]
                     found += 1
                     break
     return found
@@ -195,15 +202,16 @@ def warm_start(contacts, k: int, bodies) -> None:
     """Apply last step's accumulated impulses p_n n and p_t t again (box2d-lite PreStep)."""
     for i in range(k):
         c = contacts[i]
-        nx, ny = c["normal"][0], c["normal"][1]
+        a, b, points, n = c["a"], c["b"], c["points"], c["normal"]
+        nx, ny = n[0], n[1]
         mass = masses(c)
-        va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
+        va, vb = velocity_of(bodies, a), velocity_of(bodies, b)
         for j in range(c["count"]):
-            p = c["points"][j]
+            p = points[j]
             va, vb = apply_normal(va, vb, mass, p, nx, ny, p["normal_impulse"])
             va, vb = apply_tangent(va, vb, mass, p, nx, ny, p["tangent_impulse"])
-        set_velocity(bodies, c["a"], va)
-        set_velocity(bodies, c["b"], vb)
+        set_velocity(bodies, a, va)
+        set_velocity(bodies, b, vb)
 
 
 @njit

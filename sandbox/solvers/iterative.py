@@ -28,14 +28,8 @@ import math
 
 from sandbox.jit import njit
 from sandbox.joints.solve import solve_joint_velocities
-from sandbox.math2d import set_velocity, velocity_of
-from sandbox.solvers.common import (
-    apply_normal,
-    apply_tangent,
-    masses,
-    normal_speed,
-    tangent_speed,
-)
+from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
+from sandbox.solvers.common import masses, normal_speed
 
 # at a large dt (:func:`large_step`): sweep until no normal constraint is off by more than
 # RESIDUAL x slop / dt (a point sinks a thousandth of the slop in the step), at most
@@ -47,6 +41,10 @@ MAX_SWEEPS = 20
 # ``inline="always"``: the per-contact functions below are compiled into :func:`sweep` itself
 # (numba inlines them before LLVM sees them); called, each visit of each sweep pays a call and
 # hands its velocities through memory, about 5 % of a large scene's step. Same arithmetic.
+# A visit reads each record field once (:func:`sweep` the contact's, the functions below each
+# point's arms r x n, r x t) and works with :func:`sandbox.math2d.speed_along` and
+# :func:`~sandbox.math2d.push_along` directly: under ``SANDBOX_JIT=0`` every record read and
+# every call costs a Python object, and the sweeps are most of a step's time there.
 
 
 @njit
@@ -59,38 +57,39 @@ def visit(q: int, half: int) -> int:
 
 
 @njit(inline="always")
-def friction(c, va, vb, mu: float):
+def friction(points, count: int, nx: float, ny: float, mass, va, vb, mu: float):
     """Coulomb friction within the cone of the current normal impulse: the impulse that stops
     sliding (v_r . t -> 0), its running total clamped to |p_t| <= mu p_n."""
-    nx, ny = c["normal"][0], c["normal"][1]
-    mass = masses(c)
-    for j in range(c["count"]):
-        p = c["points"][j]
+    tx, ty = ny, -nx  # t = (n_y, -n_x)
+    for j in range(count):
+        p = points[j]
+        rt_a, rt_b = p["rt_a"], p["rt_b"]  # r x t at each body
         old = p["tangent_impulse"]
         limit = mu * p["normal_impulse"]
-        new = min(max(old - p["tangent_mass"] * tangent_speed(va, vb, p, nx, ny), -limit), limit)
+        v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)  # v_r . t
+        new = min(max(old - p["tangent_mass"] * v_t, -limit), limit)
         p["tangent_impulse"] = new
-        va, vb = apply_tangent(va, vb, mass, p, nx, ny, new - old)
+        va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, new - old)  # P = (new - old) t
     return va, vb
 
 
 @njit(inline="always")
-def normal(c, va, vb):
+def normal(points, count: int, nx: float, ny: float, mass, va, vb):
     """Each point in turn: the impulse that makes v_r . n = bias, running total >= 0
     (slides, "Collision Equation", step 1, with the target bias instead of -e v_r . n)."""
-    nx, ny = c["normal"][0], c["normal"][1]
-    mass = masses(c)
-    for j in range(c["count"]):
-        p = c["points"][j]
+    for j in range(count):
+        p = points[j]
+        rn_a, rn_b = p["rn_a"], p["rn_b"]  # r x n at each body
         old = p["normal_impulse"]
-        new = max(old + p["normal_mass"] * (p["bias"] - normal_speed(va, vb, p, nx, ny)), 0.0)
+        v_n = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n
+        new = max(old + p["normal_mass"] * (p["bias"] - v_n), 0.0)
         p["normal_impulse"] = new
-        va, vb = apply_normal(va, vb, mass, p, nx, ny, new - old)
+        va, vb = push_along(va, vb, mass, nx, ny, rn_a, rn_b, new - old)  # P = (new - old) n
     return va, vb
 
 
 @njit(inline="always")
-def block_normal(c, va, vb):
+def block_normal(c, points, nx: float, ny: float, mass, va, vb):
     """Both normal impulses of a two-point manifold at once (Box2D's block solver).
 
     Find the accumulated x = (p_n1, p_n2) >= 0 with normal speeds v_n = K x + b >= bias and
@@ -99,14 +98,15 @@ def block_normal(c, va, vb):
     Solving the pair together keeps a box standing on two corners from rocking, which solving
     one corner after the other provokes.
     """
-    nx, ny = c["normal"][0], c["normal"][1]
-    p0, p1 = c["points"][0], c["points"][1]
+    p0, p1 = points[0], points[1]
+    rn_a0, rn_b0, rn_a1, rn_b1 = p0["rn_a"], p0["rn_b"], p1["rn_a"], p1["rn_b"]  # r x n
     a1, a2 = p0["normal_impulse"], p1["normal_impulse"]
-    k11, k12, k22 = c["block_k"][0], c["block_k"][1], c["block_k"][2]
-    m11, m12, m22 = c["block_mass"][0], c["block_mass"][1], c["block_mass"][2]
+    k, m = c["block_k"], c["block_mass"]
+    k11, k12, k22 = k[0], k[1], k[2]
+    m11, m12, m22 = m[0], m[1], m[2]
     # b: the normal speed each point would have without the impulses applied so far, minus bias
-    b1 = normal_speed(va, vb, p0, nx, ny) - p0["bias"] - (k11 * a1 + k12 * a2)
-    b2 = normal_speed(va, vb, p1, nx, ny) - p1["bias"] - (k12 * a1 + k22 * a2)
+    b1 = speed_along(va, vb, nx, ny, rn_a0, rn_b0) - p0["bias"] - (k11 * a1 + k12 * a2)
+    b2 = speed_along(va, vb, nx, ny, rn_a1, rn_b1) - p1["bias"] - (k12 * a1 + k22 * a2)
     x1, x2 = -(m11 * b1 + m12 * b2), -(m12 * b1 + m22 * b2)  # both push: x = -K^-1 b
     if x1 < 0.0 or x2 < 0.0:
         x1, x2 = -b1 * p0["normal_mass"], 0.0  # only the first pushes
@@ -116,27 +116,28 @@ def block_normal(c, va, vb):
                 x1, x2 = 0.0, 0.0  # neither
                 if b1 < 0.0 or b2 < 0.0:
                     return va, vb  # no solution (degenerate): leave as is
-    mass = masses(c)
-    va, vb = apply_normal(va, vb, mass, p0, nx, ny, x1 - a1)
-    va, vb = apply_normal(va, vb, mass, p1, nx, ny, x2 - a2)
+    va, vb = push_along(va, vb, mass, nx, ny, rn_a0, rn_b0, x1 - a1)  # P = (x1 - a1) n
+    va, vb = push_along(va, vb, mass, nx, ny, rn_a1, rn_b1, x2 - a2)
     p0["normal_impulse"], p1["normal_impulse"] = x1, x2
     return va, vb
 
 
 @njit(inline="always")
-def each_increment(c, va, vb, mu: float):
+def each_increment(points, count: int, nx: float, ny: float, mass, va, vb, mu: float):
     """Without accumulation: each increment is clamped on its own (dp_n >= 0, then
     |dp_t| <= mu dp_n), which can only push."""
-    nx, ny = c["normal"][0], c["normal"][1]
-    mass = masses(c)
-    for j in range(c["count"]):
-        p = c["points"][j]
-        dn = max(p["normal_mass"] * (p["bias"] - normal_speed(va, vb, p, nx, ny)), 0.0)
+    tx, ty = ny, -nx  # t = (n_y, -n_x)
+    for j in range(count):
+        p = points[j]
+        rn_a, rn_b, rt_a, rt_b = p["rn_a"], p["rn_b"], p["rt_a"], p["rt_b"]  # r x n, r x t
+        v_n = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n
+        dn = max(p["normal_mass"] * (p["bias"] - v_n), 0.0)
         p["normal_impulse"] += dn
-        va, vb = apply_normal(va, vb, mass, p, nx, ny, dn)
-        dt = min(max(-p["tangent_mass"] * tangent_speed(va, vb, p, nx, ny), -mu * dn), mu * dn)
+        va, vb = push_along(va, vb, mass, nx, ny, rn_a, rn_b, dn)  # P = dn n
+        v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)  # v_r . t
+        dt = min(max(-p["tangent_mass"] * v_t, -mu * dn), mu * dn)
         p["tangent_impulse"] += dt
-        va, vb = apply_tangent(va, vb, mass, p, nx, ny, dt)
+        va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, dt)  # P = dt t
     return va, vb
 
 
@@ -149,20 +150,25 @@ def sweep(contacts, k: int, bodies, accumulate: bool) -> None:
     half = (k + 1) // 2
     for q in range(k):
         c = contacts[visit(q, half)]
-        va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
+        # what every visit reads, read once (in plain Python each record read costs a view)
+        a, b, points, count = c["a"], c["b"], c["points"], c["count"]
+        n = c["normal"]
+        nx, ny = n[0], n[1]
+        mass = masses(c)
+        va, vb = velocity_of(bodies, a), velocity_of(bodies, b)
         if not accumulate:
-            va, vb = each_increment(c, va, vb, c["friction"])
+            va, vb = each_increment(points, count, nx, ny, mass, va, vb, c["friction"])
         else:
-            va, vb = friction(c, va, vb, c["friction"])
+            va, vb = friction(points, count, nx, ny, mass, va, vb, c["friction"])
             if c["use_block"]:
-                va, vb = block_normal(c, va, vb)
+                va, vb = block_normal(c, points, nx, ny, mass, va, vb)
             else:
-                va, vb = normal(c, va, vb)
-        for j in range(c["count"]):
-            p = c["points"][j]
+                va, vb = normal(points, count, nx, ny, mass, va, vb)
+        for j in range(count):
+            p = points[j]
             p["max_normal_impulse"] = max(p["max_normal_impulse"], p["normal_impulse"])
-        set_velocity(bodies, c["a"], va)
-        set_velocity(bodies, c["b"], vb)
+        set_velocity(bodies, a, va)
+        set_velocity(bodies, b, vb)
 
 
 @njit
