@@ -35,7 +35,7 @@ from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.shock import contact_layers, hold_lower, touching
-from sandbox.solvers.soft import load_sag
+from sandbox.solvers.soft import excess_depth
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
 METHODS = ("half", "mass_weighted", "impulse")  # settings.penetration, in code order
@@ -104,11 +104,11 @@ def counting_order(key, top: int):
 def needs_layers(contacts, k: int, bodies, triggers, gap: float) -> bool:
     """Whether this step's position passes must go in layers (``settings.robust_positions``).
     ``triggers`` = (deep (m), heavier): a contact began the step more than ``deep`` (the slop
-    plus the bounded push) into overlap beyond its load's sag (:func:`excess_depth`), or, when
-    ``heavier`` (not in the soft step), two touching bodies differ in mass more than
-    ``HOLD_RATIO`` times. Otherwise the layered passes would do what the classic ones do (no
-    overlap for the bounded push, no body to hold), so the classic ones run: the same
-    results, without sorting into layers."""
+    plus the bounded push) into overlap beyond its load's sag
+    (:func:`sandbox.solvers.soft.excess_depth`), or, when ``heavier`` (not in the soft step),
+    two touching bodies differ in mass more than ``HOLD_RATIO`` times. Otherwise the layered
+    passes would do what the classic ones do (no overlap for the bounded push, no body to
+    hold), so the classic ones run: the same results, without sorting into layers."""
     depth, heavier = triggers
     for i in range(k):
         c = contacts[i]
@@ -164,14 +164,6 @@ def allowed_separation(c, p, slop: float, push: float) -> float:
     if p["depth"] <= slop + push:  # the usual case: no load sag to look up (it only lowers it)
         return -slop
     return min(-slop, -excess_depth(c, p) + push)
-
-
-@njit
-def excess_depth(c, p) -> float:
-    """How deep (m) a contact point began the step, less what its load explains: in the soft
-    step a loaded contact sinks by design (:func:`sandbox.solvers.soft.load_sag`), and only
-    overlap beyond that counts as deep; the rigid solvers keep no such sag (0)."""
-    return p["depth"] - load_sag(c, p)
 
 
 @njit

@@ -114,6 +114,14 @@ def load_sag(c, p) -> float:
 
 
 @njit
+def excess_depth(c, p) -> float:
+    """How deep (m) a contact point began the step, less what its load explains
+    (:func:`load_sag`): a loaded soft contact sinks by design, and only overlap beyond that
+    counts as deep; the rigid solvers keep no such sag (0)."""
+    return p["depth"] - load_sag(c, p)
+
+
+@njit
 def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     """One contact: the normal impulses (soft, or rigid without bias in the relax pass), then
     friction within the cone of the current normal impulse (Box2D v3's order). ``push`` =
@@ -131,7 +139,7 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
         bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
         if s > 0.0:
             bias = s * inv_h  # speculative: the gap may close within this substep
-        elif use_bias and (p["depth"] <= deep or p["depth"] - load_sag(c, p) <= deep):
+        elif use_bias and (p["depth"] <= deep or excess_depth(c, p) <= deep):
             bias = max(c["soft_mass_scale"] * c["soft_bias_rate"] * s, -max_push)
             mass_scale, impulse_scale = c["soft_mass_scale"], c["soft_impulse_scale"]
         vn = normal_speed(va, vb, p, nx, ny)
