@@ -8,7 +8,8 @@ For example, the code before a change in a second worktree against this one::
     python benchmarks/ab.py rain_5000 --steps 300 --rounds 7 ../before .
 
 Each round runs SCENE (a name from ``SCENES`` below, built from ``scenes.py``; a name ending
-in ``_soft``: that scene under ``solver: soft``) once with CHECKOUT_A's ``sandbox`` and once
+in ``_soft``: that scene under ``solver: soft``; ``free_1000_verlet`` and ``free_1000_rk4``:
+``free_1000`` with that integrator) once with CHECKOUT_A's ``sandbox`` and once
 with CHECKOUT_B's, each in its own process (so each has its own compiled kernels, in its own
 compile cache under the checkout), alternating, and times N steps after 5 of warm-up: CPU
 time of the stepping thread per step. On a shared machine the time of one run moves by tens
@@ -40,6 +41,9 @@ def scene_named(name: str) -> dict:
         "rain_5000": lambda: scenes.rain(5000),
         "pyramid_20": lambda: scenes.pyramid(20),
         "pyramid_40": lambda: scenes.pyramid(40),
+        "free_1000": lambda: scenes.free(1000),
+        "free_1000_verlet": lambda: scenes.free(1000, "verlet"),
+        "free_1000_rk4": lambda: scenes.free(1000, "rk4"),
     }
     base, soft, _ = name.partition("_soft")
     spec = makers[base]()
@@ -50,6 +54,7 @@ def scene_named(name: str) -> dict:
 
 SCENES = ("ballistic", "rain_100", "rain_1000", "rain_5000", "pyramid_20", "pyramid_40")
 SCENES += tuple(f"{name}_soft" for name in SCENES if name != "ballistic")
+SCENES += ("free_1000", "free_1000_verlet", "free_1000_rk4")
 
 
 def time_here(name: str, steps: int) -> float:

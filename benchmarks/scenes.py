@@ -102,6 +102,25 @@ def ballistic(iterations: int = ITERATIONS) -> dict:
     return _scene("ballistic", [body], iterations)
 
 
+def free(n: int, integrator: str = "semi_implicit_euler") -> dict:
+    """``n`` discs on a wide square grid, 10 m apart, thrown upwards with spin; no two ever
+    touch (``bench_free.py``'s world as a scene dict): the cost of integration and bookkeeping."""
+    side = max(1, int(n**0.5))
+    bodies = [
+        {
+            "name": f"b{i}",
+            "position": [10.0 * (i % side), 10.0 * (i // side)],
+            "velocity": [1.0, 5.0],
+            "angular_velocity": 1.0,
+            "shapes": [{"type": "circle", "radius": 0.2}],
+        }
+        for i in range(n)
+    ]
+    spec = _scene(f"free_{n}", bodies)
+    spec["settings"]["integrator"] = integrator
+    return spec
+
+
 def body_count(spec: dict) -> int:
     """Number of dynamic bodies in a scene dict."""
     return sum(1 for b in spec["bodies"] if b.get("type", "dynamic") == "dynamic")

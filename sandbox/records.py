@@ -215,6 +215,7 @@ PROXY = np.dtype(
         ("aabb", F8, 4),  # shape k's box [xmin, ymin, xmax, ymax], grown by the margin (m)
         ("body", I8),  # shape k's body
         ("fixed", I8),  # bit flags, pairs sharing a bit are left out (step.label_proxies)
+        ("lo", F8),  # the lower end of shape k's box along the sweep direction (m)
         ("order", I8),  # the shape at place k of the sorted sweep
         ("sweep_box", F8, 4),  # its box, its body and fixed flag, copied in sweep order
         ("sweep_body", I8),
@@ -262,7 +263,9 @@ CONTEXT = np.dtype(
         ("warm_started_points", I8),
         ("shock_layers", I8),
         ("sweeps", I8),  # iterative solver: velocity sweeps in the last step (more at a large dt)
-        ("sorted_axis", I8),  # sweep and prune: the axis PROXY["order"] is sorted on, -1: none
+        ("sweep_direction", I8),  # sweep and prune: the direction PROXY["order"] is sorted
+        # along (sandbox.broadphase.sap.DIRECTIONS), -1: none yet
+        ("sweep_recount", I8),  # steps left before the directions are compared again
         ("contact_set", I8),  # which of the two contact sets holds the last step's contacts
         ("contact_count", I8, 2),  # how many contacts each set holds
         ("need", I8),  # > 0: the pair buffer needs this many rows (nothing was changed)

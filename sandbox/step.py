@@ -110,8 +110,8 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     m = shapes.shape[0]
     proxy_boxes(shapes, vertices, bodies, ctx["contact_margin"], proxies)
     label_proxies(shapes, bodies, proxies)
-    axis, k, tests = sweep(proxies, ctx["sorted_axis"], pairs[0])
-    ctx["sorted_axis"] = axis
+    d, recount, k, tests = sweep(proxies, ctx["sweep_direction"], ctx["sweep_recount"], pairs[0])
+    ctx["sweep_direction"], ctx["sweep_recount"] = d, recount
     ctx["pair_tests"] = tests
     if k > pairs.shape[1]:
         return -k

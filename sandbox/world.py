@@ -93,7 +93,7 @@ class World(Building, Measures):
         self.joint_table = np.zeros(0, dtype=JOINT)
         self.generator_table = np.zeros(0, dtype=GENERATOR)
         self.context = np.zeros(1, dtype=CONTEXT)
-        self.context[0]["sorted_axis"] = -1
+        self.context[0]["sweep_direction"] = -1
         self._geometry: Geometry | None = None
         self._buffers: ContactBuffers | None = None
         self._found_stats: dict | None = None
@@ -168,7 +168,7 @@ class World(Building, Measures):
         if b is None or len(b.proxies) != len(g):
             b = self._buffers = ContactBuffers(len(g))
             ctx = self.context[0]
-            ctx["sorted_axis"] = -1
+            ctx["sweep_direction"] = -1
             ctx["contact_count"][0] = ctx["contact_count"][1] = 0
         return b
 

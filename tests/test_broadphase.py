@@ -268,3 +268,47 @@ def test_plain_python_mode_gives_the_same_pairs_and_counts():
     )
     fast = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert slow.stdout == fast.stdout and slow.stdout.count("\n") == len(STRATEGIES)
+
+
+def lattice(n: int, spacing: float = 10.0, radius: float = 0.2) -> np.ndarray:
+    """Boxes of ``n`` discs on a square grid ``spacing`` m apart (the free-body benchmark)."""
+    side = int(math.sqrt(n))
+    c = np.array([[spacing * (i % side), spacing * (i // side)] for i in range(n)], float)
+    return np.concatenate([c - radius, c + radius], axis=1)
+
+
+def test_sap_counts_the_candidates_of_every_direction():
+    # the count that chooses the direction is the sweep's own test count: with no pair
+    # filtered (each shape its own body, none fixed) the two must agree exactly
+    from sandbox.broadphase.sap import DIRECTIONS, candidates, proxies_of
+
+    m = 500
+    aabb = spread_world(m, seed=5)
+    proxies = proxies_of(aabb, np.zeros(m, np.int64), np.arange(m))
+    static, body = np.zeros(m, bool), np.arange(m)
+    expected = reference_pairs(aabb, static, body).tolist()
+    for d in range(len(DIRECTIONS)):
+        pairs, tests = find_pairs("sap", aabb, axis=d)
+        assert tests == candidates(proxies, d)
+        assert pairs.tolist() == expected  # the same pairs whatever the direction
+
+
+def test_sap_sweeps_a_lattice_along_a_slanted_direction():
+    # a row of a grid shares its lower end along y (and a column along x): swept along an
+    # axis, each disc is tested against its whole row; along the slanted direction the rows
+    # fan out 10 sin(0.15) = 1.5 m apart, beyond a disc's 0.4 m
+    aabb = lattice(1000)
+    along_y = find_pairs("sap", aabb, axis=1)[1]
+    pairs, tests = find_pairs("sap", aabb)
+    assert describe("sap", aabb)["axis"] in (2, 3)
+    assert len(pairs) == 0 and along_y > 10_000
+    assert tests < 0.1 * along_y
+
+
+def test_sap_sweeps_a_wide_scatter_along_x():
+    # a world ten times wider than high: x is the direction with the fewest candidates (the
+    # slanted ones lengthen every interval and mix in the height)
+    rng = np.random.default_rng(2)
+    c = rng.uniform((0.0, 0.0), (100.0, 10.0), (800, 2))
+    aabb = np.concatenate([c - 0.2, c + 0.2], axis=1)
+    assert describe("sap", aabb)["axis"] == 0

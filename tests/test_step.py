@@ -59,7 +59,7 @@ def test_buffers_grow_without_changing_the_result():
     small._choose_path()  # the step's calls take the new buffers
     small.context[0]["contact_count"][:] = 0
     normal.context[0]["contact_count"][:] = 0
-    normal.context[0]["sorted_axis"] = small.context[0]["sorted_axis"] = -1
+    normal.context[0]["sweep_direction"] = small.context[0]["sweep_direction"] = -1
     run(small), run(normal)
     assert small._buffers.capacity >= small.stats["pairs"] > 2
     assert same_state(small, normal)
