@@ -214,7 +214,7 @@ PROXY = np.dtype(
     [
         ("aabb", F8, 4),  # shape k's box [xmin, ymin, xmax, ymax], grown by the margin (m)
         ("body", I8),  # shape k's body
-        ("fixed", I8),  # bit flags, pairs sharing a bit are left out (step.label_proxies)
+        ("fixed", I8),  # bit flags, pairs sharing a bit are left out (step.place_proxies)
         ("lo", F8),  # the lower end of shape k's box along the sweep direction (m)
         ("order", I8),  # the shape at place k of the sorted sweep
         ("sweep_box", F8, 4),  # its box, its body and fixed flag, copied in sweep order

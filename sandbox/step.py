@@ -37,7 +37,7 @@ import time
 
 import numpy as np
 
-from sandbox.broadphase.aabb import proxy_boxes, sort_pairs_into
+from sandbox.broadphase.aabb import shape_box, sort_pairs_into
 from sandbox.broadphase.sap import sweep
 from sandbox.energy_growth import closed_energy, fastest_body
 from sandbox.integrators import (
@@ -92,13 +92,17 @@ MOVING_KINEMATIC = 2
 
 
 @njit
-def label_proxies(shapes, bodies, proxies) -> None:
-    """Each shape's body and whether that body can be pushed, for the broadphase's filter."""
+def place_proxies(shapes, vertices, bodies, margin: float, proxies) -> None:
+    """Each shape's box grown by ``margin`` (m, :func:`sandbox.broadphase.aabb.shape_box`), its
+    body and whether that body can be pushed (the broadphase's filter), in one pass."""
     for k in range(shapes.shape[0]):
         b = shapes[k]["body"]
-        proxies[k]["body"] = b
-        kind = bodies[b]["kind"]
-        proxies[k]["fixed"] = MOVING_KINEMATIC if moving_kinematic(bodies[b]) else FIXED_FLAGS[kind]
+        body = bodies[b]
+        p = proxies[k]
+        a = p["aabb"]
+        a[0], a[1], a[2], a[3] = shape_box(shapes[k], vertices, body, margin)
+        p["body"] = b
+        p["fixed"] = MOVING_KINEMATIC if moving_kinematic(body) else FIXED_FLAGS[body["kind"]]
 
 
 @njit
@@ -108,8 +112,7 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     is too small (nothing else changed)."""
     ctx = context[0]
     m = shapes.shape[0]
-    proxy_boxes(shapes, vertices, bodies, ctx["contact_margin"], proxies)
-    label_proxies(shapes, bodies, proxies)
+    place_proxies(shapes, vertices, bodies, ctx["contact_margin"], proxies)
     d, recount, k, tests = sweep(proxies, ctx["sweep_direction"], ctx["sweep_recount"], pairs[0])
     ctx["sweep_direction"], ctx["sweep_recount"] = d, recount
     ctx["pair_tests"] = tests
@@ -348,8 +351,7 @@ def staged_pairs(world, a, ctx) -> int:
             a.shapes, a.vertices, a.bodies, a.buffers.proxies, a.buffers.pairs, a.context
         )
     proxies = a.buffers.proxies
-    proxy_boxes(a.shapes, a.vertices, a.bodies, ctx["contact_margin"], proxies)
-    label_proxies(a.shapes, a.bodies, proxies)
+    place_proxies(a.shapes, a.vertices, a.bodies, ctx["contact_margin"], proxies)
     found, tests = find_pairs_by_name(
         world.settings.broadphase,
         np.ascontiguousarray(proxies["aabb"]),

@@ -9,7 +9,7 @@ One interface, five swappable strategies (``STRATEGIES``)::
   ``static`` (m,) bool (the shape's body cannot move), ``body`` (m,) int64 owner. ``static``
   may also hold integer bit flags: two shapes are left out when their flags share a bit (the
   step uses 3 for a static body, 1 for a sleeping one and 2 for a moving kinematic one, so a
-  moving kinematic body still meets a sleeping one; see :func:`sandbox.step.label_proxies`).
+  moving kinematic body still meets a sleeping one; see :func:`sandbox.step.place_proxies`).
 - ``pairs`` (k, 2) int64: exactly the shape pairs whose boxes overlap (touching counts),
   ``pairs[:, 0] < pairs[:, 1]``, sorted lexicographically, no duplicates, never two static
   shapes nor two shapes of one body. The list is identical for every strategy, so a simulation

@@ -51,15 +51,6 @@ def aabbs_into(shapes, vertices, bodies, margin: float, out) -> None:
         out[k, 0], out[k, 1], out[k, 2], out[k, 3] = box
 
 
-@njit
-def proxy_boxes(shapes, vertices, bodies, margin: float, proxies) -> None:
-    """Every shape's AABB into ``proxies["aabb"]`` (the step's broadphase scratch)."""
-    for k in range(shapes.shape[0]):
-        box = shape_box(shapes[k], vertices, bodies[shapes[k]["body"]], margin)
-        a = proxies[k]["aabb"]
-        a[0], a[1], a[2], a[3] = box
-
-
 def shape_aabbs(
     shape_body: np.ndarray,
     shape_kind: np.ndarray,
