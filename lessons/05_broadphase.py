@@ -30,8 +30,8 @@
 #   line stay at the node
 # - **sap** (sort and sweep, "co-ordinate sorting"): sort boxes by $x_{min}$ and sweep;
 #   only boxes whose intervals overlap are tested. The engine sweeps along x, y, or one of
-#   them turned by 0.15 rad, whichever has the fewest overlapping intervals (counted with one
-#   sort per direction): bodies set out on a grid share their $y_{min}$ row by row, and a
+#   them turned by 0.15 rad, whichever has the fewest overlapping intervals (counted with two
+#   sorts per direction): bodies set out on a grid share their $y_{min}$ row by row, and a
 #   slanted direction fans the rows out ("Bodies on a grid" below)
 #
 # All five return exactly the same sorted pair list (a tested invariant), so the simulation is
@@ -319,7 +319,7 @@ print("figures written to", OUT.name)
 # direction turned by a small angle $\theta$ the rows fan out: two balls a spacing $s$ apart
 # in a row are $s \sin\theta$ apart along it, and a ball's interval grows from $2r$ to
 # $2r(\cos\theta + \sin\theta)$ only. The engine counts the candidates along x, y and both
-# turned by 0.15 rad (one sort each, once every 30 steps) and sweeps along the fewest.
+# turned by 0.15 rad (two sorts each, once every 30 steps) and sweeps along the fewest.
 # The figure shows 6 x 6 balls 2 m apart; the table, 1,000 balls 10 m apart (the free-body
 # benchmark's world) and, for contrast, the random world above.
 

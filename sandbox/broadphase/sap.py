@@ -10,7 +10,7 @@ AABB test. Sorting is O(m log m); the sweep costs one test per candidate.
 
 The direction is one of four (:data:`DIRECTIONS`): x, y, and each of them turned by
 :data:`SLANT`. The one chosen is the one with the fewest candidates, counted for all four
-(:func:`candidates`, a sort each) when the sweep starts and again every :data:`RECOUNT` steps.
+(:func:`candidates`, two sorts each) when the sweep starts and again every :data:`RECOUNT` steps.
 Along x or y a box's interval is shortest, and a random scatter of boxes is best swept there,
 along its longer side. But bodies set out on a lattice (a grid of balls, the columns of a
 stack) share their ``lo``: a whole row of them overlaps along y, however far apart they are
