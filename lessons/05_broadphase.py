@@ -319,7 +319,8 @@ print("figures written to", OUT.name)
 # direction turned by a small angle $\theta$ the rows fan out: two balls a spacing $s$ apart
 # in a row are $s \sin\theta$ apart along it, and a ball's interval grows from $2r$ to
 # $2r(\cos\theta + \sin\theta)$ only. The engine counts the candidates along x, y and both
-# turned by 0.15 rad (two sorts each, once every 30 steps) and sweeps along the fewest.
+# turned by 0.15 rad (two sorts each, once every 30 steps) and sweeps along the fewest; a
+# slanted test compares both axes, so it weighs a third more in that choice.
 # The figure shows 6 x 6 balls 2 m apart; the table, 1,000 balls 10 m apart (the free-body
 # benchmark's world) and, for contrast, the random world above.
 

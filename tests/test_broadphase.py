@@ -312,3 +312,17 @@ def test_sap_sweeps_a_wide_scatter_along_x():
     c = rng.uniform((0.0, 0.0), (100.0, 10.0), (800, 2))
     aabb = np.concatenate([c - 0.2, c + 0.2], axis=1)
     assert describe("sap", aabb)["axis"] == 0
+
+
+def test_sap_keeps_a_pyramid_on_an_axis():
+    # a pyramid of 20 1 m boxes at the base, grown by 2 cm: the slanted y has 14% fewer
+    # candidates than x (2,977 against 3,465), but a slanted test weighs a third more, so x
+    boxes = []
+    for row in range(20):
+        for k in range(20 - row):
+            x, y = k - 0.5 * (19 - row), row + 0.5
+            boxes.append([x - 0.52, y - 0.52, x + 0.52, y + 0.52])
+    aabb = np.array(boxes)
+    tests = [find_pairs("sap", aabb, axis=d)[1] for d in range(4)]
+    assert tests[3] < tests[0] < tests[3] * 4 / 3  # the case the weight decides
+    assert describe("sap", aabb)["axis"] == 0
