@@ -21,26 +21,16 @@ import statistics
 import time
 
 import sandbox
+import scenes  # benchmarks/scenes.py, beside this file
 
 INTEGRATORS = ("explicit_euler", "semi_implicit_euler", "verlet", "rk4")
 BODIES = (1, 1000)
 
 
 def free_world(n: int, integrator: str = "semi_implicit_euler") -> sandbox.World:
-    """``n`` discs on a wide grid, far apart, thrown upwards; no two ever touch."""
-    world = sandbox.World(gravity=(0.0, -9.81), dt=1.0 / 60.0, integrator=integrator)
-    side = max(1, int(n**0.5))
-    for i in range(n):
-        body = world.add_body(
-            sandbox.Body(
-                f"b{i}",
-                position=(10.0 * (i % side), 10.0 * (i // side)),
-                velocity=(1.0, 5.0),
-                angular_velocity=1.0,
-            )
-        )
-        body.add_shape(sandbox.Circle(0.2))
-    return world
+    """``n`` discs on a wide grid, far apart, thrown upwards; no two ever touch
+    (:func:`scenes.free`, the scene ``ab.py`` times as ``free_1000``)."""
+    return sandbox.load_scene(scenes.free(n, integrator))
 
 
 def block_rate(world: sandbox.World, steps: int) -> float:

@@ -104,7 +104,7 @@ def ballistic(iterations: int = ITERATIONS) -> dict:
 
 def free(n: int, integrator: str = "semi_implicit_euler") -> dict:
     """``n`` discs on a wide square grid, 10 m apart, thrown upwards with spin; no two ever
-    touch (``bench_free.py``'s world as a scene dict): the cost of integration and bookkeeping."""
+    touch (``bench_free.py``'s world): the cost of integration and bookkeeping."""
     side = max(1, int(n**0.5))
     bodies = [
         {
