@@ -55,6 +55,7 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     ctx["touch_margin"] = s.contact_margin
     for key, default in SOFT_DEFAULTS:
         ctx[key] = getattr(s, key, default)
+    ctx["joint_direct"] = getattr(s, "joint_solver", "direct") == "direct"
     ctx["diverged"] = -1
     ctx["energy_limit"] = np.inf  # set by the world for a closed system (sandbox.energy_growth)
     ctx["awake"] = -1  # sleep: not known until a step has run

@@ -178,6 +178,24 @@ JOINT = np.dtype(
     align=True,
 )
 
+# one scalar row of a joint, as the soft step's direct joint solve (sandbox.joints.direct)
+# gathers them each pass: a pivot has two (x, y), a pin one (along the rod)
+JOINT_ROW = np.dtype(
+    [
+        ("joint", I8),  # which joint
+        ("a", I8),  # its bodies
+        ("b", I8),
+        ("d", V2),  # the row's direction: Cdot = d . (v_b + w_b x r_b - v_a - w_a x r_a)
+        ("arm_a", F8),  # r_a x d (m)
+        ("arm_b", F8),  # r_b x d (m)
+        ("inverse", F8, 4),  # (1/m_a, 1/I_a, 1/m_b, 1/I_b)
+        ("error", F8),  # Cdot + bias at the pass start (m/s)
+        ("impulse", F8),  # accumulated impulse at the pass start (N s)
+        ("own", F8),  # pin: 1 / its prepared effective mass (the block a sweep divides by)
+    ],
+    align=True,
+)
+
 GENERATOR = np.dtype(
     [
         ("kind", I8),  # DRAG, BUOYANCY or CONSTANT
@@ -253,6 +271,7 @@ CONTEXT = np.dtype(
         ("contact_damping_ratio", F8),
         ("joint_hertz", F8),
         ("joint_damping_ratio", F8),
+        ("joint_direct", np.bool_),  # soft step: the joints solved together (not swept)
         ("max_push_speed", F8),
         ("sleep", np.bool_),  # sleeping islands on
         # reported by the stages

@@ -26,6 +26,7 @@ INTEGRATORS = ("explicit_euler", "semi_implicit_euler", "verlet", "rk4", "analyt
 BROADPHASES = ("brute", "grid", "sap", "quadtree", "kdtree")
 SOLVERS = ("pairwise", "shock", "iterative", "soft")
 PENETRATIONS = ("half", "mass_weighted", "impulse")
+JOINT_SOLVERS = ("direct", "sweeps")
 
 CHOICES = {
     "orientation": ORIENTATIONS,
@@ -33,6 +34,7 @@ CHOICES = {
     "broadphase": BROADPHASES,
     "solver": SOLVERS,
     "penetration": PENETRATIONS,
+    "joint_solver": JOINT_SOLVERS,
 }
 
 # the keys a scene file's "settings" object always carries (the design's contract); the other
@@ -164,6 +166,13 @@ class Settings:
     )
     joint_damping_ratio: float = _setting(
         5.0, "number", "damping ratio of soft joints (solver: soft)", Range(0.0, 1e3), ge=0.0
+    )
+    joint_solver: str = _setting(
+        "direct",
+        "choice",
+        "how the soft step solves its joints: all together by one linear solve per pass "
+        "(direct), or one at a time, iterations times per substep (sweeps) (solver: soft)",
+        choices=JOINT_SOLVERS,
     )
     max_push_speed: float = _setting(
         3.0, "number", "fastest speed at which overlapping bodies are pushed apart", _SPEED, gt=0.0

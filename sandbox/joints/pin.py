@@ -161,20 +161,28 @@ def warm_start_pin_soft(j, bodies) -> None:
 
 
 @njit
+def pin_rod_error(j, bodies, soft, use_bias: bool):
+    """The rod's arms and direction u, and what its impulse must cancel, u . Cdot + bias
+    (m/s), with the soft bias on C = |pb - pa| - L (none in the relax pass)."""
+    ra, rb, u, length = rod_now(j, bodies)
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
+    rel = anchor_velocity(va, ra, vb, rb)
+    error = u[0] * rel[0] + u[1] * rel[1]
+    if use_bias:
+        error += soft[0] * (length - j["length"])
+    return ra, rb, u, error
+
+
+@njit
 def solve_pin_soft(j, bodies, soft, use_bias: bool) -> None:
     """The rod as a soft constraint: lambda = -mass_scale m_eff (u . Cdot + bias_rate C) -
     impulse_scale lambda_total with C = |pb - pa| - L (``soft`` = (bias_rate, mass_scale,
     impulse_scale), :func:`sandbox.solvers.soft.softness`); rigid without bias (relax)."""
-    ra, rb, u, length = rod_now(j, bodies)
-    bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
-    if use_bias:
-        bias = soft[0] * (length - j["length"])
-        mass_scale, impulse_scale = soft[1], soft[2]
-    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
-    rel = anchor_velocity(va, ra, vb, rb)
-    cdot = u[0] * rel[0] + u[1] * rel[1]
-    lam = -mass_scale * j["axial_mass"] * (cdot + bias) - impulse_scale * j["impulse"][0]
+    ra, rb, u, error = pin_rod_error(j, bodies, soft, use_bias)
+    mass_scale, impulse_scale = (soft[1], soft[2]) if use_bias else (1.0, 0.0)
+    lam = -mass_scale * j["axial_mass"] * error - impulse_scale * j["impulse"][0]
     j["impulse"][0] += lam
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
     va, vb = apply_joint_impulse(
         va, vb, inverse_masses(j, bodies), ra, rb, lam * u[0], lam * u[1], 0.0
     )

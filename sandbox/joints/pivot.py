@@ -232,20 +232,21 @@ def soft_limit(axial_mass, c, cdot, total, soft, use_bias, inv_h) -> float:
 
 
 @njit
-def solve_pivot_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> None:
-    """Motor, limits and point as soft constraints (Box2D v3's revolute joint): the point's
-    error is C = (dc_b - dc_a) + (r_b - r_a) + (c_b - c_a at the start) = pb - pa."""
+def solve_pivot_axial_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> None:
+    """The motor, then the limits as soft one-sided constraints (Box2D v3's revolute joint)."""
+    axial_mass = j["axial_mass"]
+    if axial_mass == 0.0 or not (j["has_motor"] or j["has_limits"]):
+        return
     va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
     mass = inverse_masses(j, bodies)
-    axial_mass = j["axial_mass"]
-    if axial_mass > 0.0 and j["has_motor"]:
+    if j["has_motor"]:
         bound = j["max_torque"] * j["dt"]
         old = j["motor_impulse"]
         j["motor_impulse"] = min(
             max(old - axial_mass * (vb[2] - va[2] - j["motor_rate"]), -bound), bound
         )
         va, vb = angular(va, vb, mass, j["motor_impulse"] - old)
-    if axial_mass > 0.0 and j["has_limits"]:
+    if j["has_limits"]:
         theta = relative_angle(j, bodies)
         lam = soft_limit(
             axial_mass, theta - j["lower"], vb[2] - va[2], j["lower_impulse"], soft, use_bias, inv_h
@@ -257,6 +258,16 @@ def solve_pivot_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> None:
         )
         j["upper_impulse"] += lam
         va, vb = angular(va, vb, mass, -lam)
+    set_velocity(bodies, j["a"], va)
+    set_velocity(bodies, j["b"], vb)
+
+
+@njit
+def pivot_point_error(j, bodies, soft, use_bias: bool):
+    """The point rows' arms and what the impulse must cancel, Cdot + bias (m/s): the anchors'
+    relative velocity, aimed at the arc's end, plus the soft bias on C = (dc_b - dc_a) +
+    (r_b - r_a) + (c_b - c_a at the start) = pb - pa (none in the relax pass)."""
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
     ra, rb = arms_now(j, bodies)
     cx, cy = anchor_velocity(va, ra, vb, rb)
     # arc correction: the anchors move on arcs R(w h) r, not along the tangents the velocity
@@ -264,19 +275,28 @@ def solve_pivot_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> None:
     h = j["dt"]
     ea, eb = arc_error(ra[0], ra[1], va[2] * h), arc_error(rb[0], rb[1], vb[2] * h)
     cx, cy = cx - (ea[0] - eb[0]) / h, cy - (ea[1] - eb[1]) / h
-    bx = by = 0.0
-    mass_scale, impulse_scale = 1.0, 0.0
     if use_bias:
         a, b = bodies[j["a"]], bodies[j["b"]]
         sx = b["delta_position"][0] - a["delta_position"][0] + rb[0] - ra[0] + j["delta_center"][0]
         sy = b["delta_position"][1] - a["delta_position"][1] + rb[1] - ra[1] + j["delta_center"][1]
-        bx, by = soft[0] * sx, soft[0] * sy
-        mass_scale, impulse_scale = soft[1], soft[2]
-    ux, uy = solve2(point_matrix(mass, ra, rb), cx + bx, cy + by)
+        cx, cy = cx + soft[0] * sx, cy + soft[0] * sy
+    return ra, rb, cx, cy
+
+
+@njit
+def solve_pivot_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> None:
+    """Motor, limits and point as soft constraints (Box2D v3's revolute joint): the point
+    impulse P = -mass_scale K^-1 (Cdot + bias) - impulse_scale P_total."""
+    solve_pivot_axial_soft(j, bodies, soft, use_bias, inv_h)
+    ra, rb, ex, ey = pivot_point_error(j, bodies, soft, use_bias)
+    mass_scale, impulse_scale = (soft[1], soft[2]) if use_bias else (1.0, 0.0)
+    mass = inverse_masses(j, bodies)
+    ux, uy = solve2(point_matrix(mass, ra, rb), ex, ey)
     px = -mass_scale * ux - impulse_scale * j["impulse"][0]
     py = -mass_scale * uy - impulse_scale * j["impulse"][1]
     j["impulse"][0] += px
     j["impulse"][1] += py
+    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
     va, vb = apply_joint_impulse(va, vb, mass, ra, rb, px, py, 0.0)
     set_velocity(bodies, j["a"], va)
     set_velocity(bodies, j["b"], vb)

@@ -10,11 +10,17 @@ Per step::
     ... positions move ...
     solve_joint_positions   once per position pass, after the contacts' pass (returns the
                             largest error, m or rad)
+
+The soft step (:mod:`sandbox.solvers.soft`) prepares them once per step
+(``prepare_joints_soft``) and in each substep warm starts them, then solves them with the soft
+bias and relaxes them without (``solve_joints_soft_pass``): all together
+(:mod:`sandbox.joints.direct`, the default) or one at a time (``solve_joints_soft``).
 """
 
 from __future__ import annotations
 
 from sandbox.jit import njit
+from sandbox.joints.direct import has_axial, solve_joints_direct
 from sandbox.joints.pin import (
     prepare_pin,
     solve_pin_position,
@@ -121,3 +127,20 @@ def solve_joints_soft(joints, bodies, soft, use_bias: bool, inv_h: float) -> Non
             solve_pin_soft(j, bodies, soft, use_bias)
         elif j["kind"] == PIVOT:
             solve_pivot_soft(j, bodies, soft, use_bias, inv_h)
+
+
+@njit
+def solve_joints_soft_pass(joints, bodies, joint_soft, use_bias: bool, context) -> None:
+    """The joints' share of a soft substep's solve (``use_bias``) or relax pass: solved together
+    (:mod:`sandbox.joints.direct`), repeated ``iterations`` times in the solve only while
+    motors or limits are swept beside the point rows; or swept, ``iterations`` times in the
+    solve (joints are few and a chain's error travels), once in the relax."""
+    ctx = context[0]
+    inv_h = 1.0 / (ctx["dt"] / ctx["substeps"])
+    direct = ctx["joint_direct"]
+    passes = ctx["iterations"] if use_bias and (not direct or has_axial(joints)) else 1
+    for _ in range(passes):
+        if direct:
+            solve_joints_direct(joints, bodies, joint_soft, use_bias, inv_h)
+        else:
+            solve_joints_soft(joints, bodies, joint_soft, use_bias, inv_h)
