@@ -133,6 +133,14 @@ def is_warm() -> bool:
     return CACHE_FOLDER is not None and (CACHE_FOLDER / WARM_FILE).exists()
 
 
+def has_kernel(name: str) -> bool:
+    """Whether an earlier run left compiled code of ``name``, a kernel of
+    :mod:`sandbox.step` (``"fast_step"``, ``"soft_step"``), in the cache folder: numba's index
+    file ``step.<name>-<line>.py<version>.nbi``. A large scene whose step is there loads it
+    in a second or two, even before ``sandbox warmup`` has compiled everything."""
+    return CACHE_FOLDER is not None and any(CACHE_FOLDER.rglob(f"step.{name}-*.nbi"))
+
+
 def mark_warm() -> None:
     """Note that every kernel is compiled into the cache folder."""
     if CACHE_FOLDER is not None:

@@ -51,9 +51,29 @@ def test_a_large_scene_compiles_and_says_so(monkeypatch):
     monkeypatch.delenv("SANDBOX_JIT", raising=False)
     monkeypatch.setattr(first_run, "engine_imported", lambda: False)  # a fresh command
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
+    monkeypatch.setattr(compile_cache, "has_kernel", lambda name: False)
     first_run.choose_engine_speed({"bodies": [{}] * 210}, 120)  # pyramid 20: 25,200
     assert "SANDBOX_JIT" not in os.environ
     assert notes and "compiling the engine" in notes[0]
+
+
+def test_a_large_scene_whose_step_is_cached_says_nothing(tmp_path, monkeypatch):
+    # an earlier run compiled the pyramid's step (its index file is in the cache) but no
+    # warmup finished: the next run loads it, without the "about half a minute" note; a soft
+    # scene needs the soft step, which is not there, and gets the note
+    notes = []
+    monkeypatch.setattr(first_run, "note", notes.append)
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setattr(first_run, "engine_imported", lambda: False)
+    monkeypatch.setattr(compile_cache, "CACHE_FOLDER", tmp_path)
+    (tmp_path / "sandbox_0123").mkdir()
+    (tmp_path / "sandbox_0123" / "step.fast_step-216.py311.nbi").write_bytes(b"")
+    box = {"shapes": [{"type": "box"}]}
+    first_run.choose_engine_speed({"bodies": [box] * 210, "settings": {"solver": "iterative"}}, 120)
+    assert notes == [] and "SANDBOX_JIT" not in os.environ
+    soft = {"bodies": [box] * 210, "settings": {"solver": "soft"}}
+    first_run.choose_engine_speed(soft, 120)
+    assert len(notes) == 1 and "compiling the engine" in notes[0]
 
 
 def test_warm_marker(tmp_path, monkeypatch):

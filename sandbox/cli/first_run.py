@@ -34,7 +34,7 @@ def choose_engine_speed(spec: dict, steps: int) -> None:
     """Before the engine is imported: run uncompiled if that is sooner (see the module)."""
     if "SANDBOX_JIT" in os.environ or engine_imported():
         return
-    from sandbox.compile_cache import CACHE_FOLDER, is_warm
+    from sandbox.compile_cache import CACHE_FOLDER, has_kernel, is_warm
 
     if is_warm():
         return
@@ -43,8 +43,17 @@ def choose_engine_speed(spec: dict, steps: int) -> None:
         started = start_background_warmup(CACHE_FOLDER)
         later = "it compiles in the background for the next runs" if started else ""
         note(f"the engine is not compiled for this machine yet: this run is plain Python; {later}")
-    else:
+    elif not has_kernel(step_kernel(spec)):
         note("compiling the engine for this machine, once: about half a minute; later runs load it")
+
+
+def step_kernel(spec: dict) -> str:
+    """The compiled step a validated scene runs (:meth:`sandbox.world.World._choose_path`):
+    ``free_step`` when nothing can touch, else the soft or the rigid one-call step."""
+    if spec.get("settings", {}).get("solver") == "soft":
+        return "soft_step"
+    shapes = sum(len(body.get("shapes", [])) for body in spec["bodies"])
+    return "free_step" if shapes < 2 and not spec.get("joints") else "fast_step"
 
 
 def engine_imported() -> bool:
