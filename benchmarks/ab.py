@@ -9,7 +9,8 @@ For example, the code before a change in a second worktree against this one::
 
 Each round runs SCENE (a name from ``SCENES`` below, built from ``scenes.py``; a name ending
 in ``_soft``: that scene under ``solver: soft``; ``free_1000_verlet`` and ``free_1000_rk4``:
-``free_1000`` with that integrator) once with CHECKOUT_A's ``sandbox`` and once
+``free_1000`` with that integrator; ``chain_20_soft``, ``chain_100_soft``, ``heavy_chain_soft``:
+the soft step lesson's chains, 20 and 100 links, 10 links and a ball of 100 link masses) once with CHECKOUT_A's ``sandbox`` and once
 with CHECKOUT_B's, each in its own process (so each has its own compiled kernels, in its own
 compile cache under the checkout), alternating, and times N steps after 5 of warm-up: CPU
 time of the stepping thread per step. On a shared machine the time of one run moves by tens
@@ -44,6 +45,9 @@ def scene_named(name: str) -> dict:
         "free_1000": lambda: scenes.free(1000),
         "free_1000_verlet": lambda: scenes.free(1000, "verlet"),
         "free_1000_rk4": lambda: scenes.free(1000, "rk4"),
+        "chain_20": lambda: scenes.chain(20),
+        "chain_100": lambda: scenes.chain(100),
+        "heavy_chain": lambda: scenes.chain(10, ball=100.0),
     }
     base, soft, _ = name.partition("_soft")
     spec = makers[base]()
@@ -55,6 +59,7 @@ def scene_named(name: str) -> dict:
 SCENES = ("ballistic", "rain_100", "rain_1000", "rain_5000", "pyramid_20", "pyramid_40")
 SCENES += tuple(f"{name}_soft" for name in SCENES if name != "ballistic")
 SCENES += ("free_1000", "free_1000_verlet", "free_1000_rk4")
+SCENES += ("chain_20_soft", "chain_100_soft", "heavy_chain_soft")  # the joints of the soft step
 
 
 def time_here(name: str, steps: int) -> float:

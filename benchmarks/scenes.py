@@ -121,6 +121,33 @@ def free(n: int, integrator: str = "semi_implicit_euler") -> dict:
     return spec
 
 
+def chain(links: int, ball: float = 0.0) -> dict:
+    """Boxes 0.5 m x 0.1 m of 1 kg hinged end to end from a static hook at (0, 10), released
+    horizontally; ``ball`` > 0 hangs a disc of that many link masses at the free end (the soft
+    step lesson's chains): the cost of the joints."""
+    link = {"type": "box", "width": 0.5, "height": 0.1, "density": 20.0}
+    bodies = [{"name": "hook", "type": "static", "position": [0.0, 10.0], "shapes": []}]
+    joints, prev = [], "hook"
+    for i in range(links):
+        bodies.append({"name": f"link{i}", "position": [(i + 0.5) * 0.5, 10.0], "shapes": [link]})
+        anchor_a = [0.0, 0.0] if i == 0 else [0.25, 0.0]
+        joints.append(
+            {"type": "pivot", "a": prev, "b": f"link{i}", "anchor_a": anchor_a,
+             "anchor_b": [-0.25, 0.0]}
+        )  # fmt: skip
+        prev = f"link{i}"
+    if ball:
+        disc = {"type": "circle", "radius": 0.25, "mass": ball}
+        bodies.append({"name": "ball", "position": [(links + 0.5) * 0.5, 10.0], "shapes": [disc]})
+        joints.append(
+            {"type": "pivot", "a": prev, "b": "ball", "anchor_a": [0.25, 0.0],
+             "anchor_b": [-0.25, 0.0]}
+        )  # fmt: skip
+    spec = _scene(f"chain_{links}", bodies)
+    spec["joints"] = joints
+    return spec
+
+
 def body_count(spec: dict) -> int:
     """Number of dynamic bodies in a scene dict."""
     return sum(1 for b in spec["bodies"] if b.get("type", "dynamic") == "dynamic")
