@@ -25,8 +25,9 @@
 #    velocities, warm starts, solves once with the springs' push (the *bias*), moves the bodies
 #    and then **relaxes**: solves again without the push;
 # 3. after the substeps, a **restitution** pass puts the bounces back;
-# 4. the joints are solved **together**, one linear solve per pass (`joint_solver = "direct"`),
-#    where Box2D sweeps them one at a time: this engine's own step past Box2D (section 6).
+# 4. the joints are solved **together**, one linear solve per pass, where Box2D sweeps them
+#    one at a time: this engine's own step past Box2D (section 6; `joint_solver`: `auto`, the
+#    default, does so along chains and trees, `direct` always, `sweeps` never).
 #
 # This lesson explains each part with its formula, checks the formulas against a direct
 # integration and the engine, and then runs the three hard scenes (a pyramid of base 40, a
@@ -998,9 +999,13 @@ print_table(["scene", "soft settings", "worst link stretch in 10 s (mm)", "ms pe
 # which the engine solves by Cholesky factorisation (`sandbox/joints/direct.py`). $K$ is sparse
 # (two rows couple only through a body they share), and along a chain the factorisation touches
 # only each row's neighbouring joints: a pass costs about three sweeps. Its result is where
-# infinitely many sweeps would go: the same springs, with section 2's static error. In the
-# relax pass (rigid, $c = 0$) a closed loop's redundant row would make $K$ singular; the
-# factorisation drops it. Below: (a) at the heavy chain's worst moment, how far the joints'
+# infinitely many sweeps would go: the same springs, with section 2's static error. The relax
+# pass is the rigid case, $c = 0$. Where joints close a loop (a four-bar linkage, a net of
+# hinges) a loop can have more rows than its bodies have degrees of freedom, $K$ is then
+# singular, and the relax pass stays swept. A wide net also makes the factorisation costly (a
+# 20 x 20 net of hinges: four times the sweeps' time), so the default, `joint_solver = "auto"`,
+# solves joints together where that costs no more than sweeping them, as along chains and
+# trees, and sweeps a wide net. Below: (a) at the heavy chain's worst moment, how far the joints'
 # biased pass is, after $n$ sweeps and after one, two and three direct passes, from where the
 # sweeps converge; (b) the heavy chain's worst stretch through the run, both ways.
 

@@ -9,6 +9,7 @@ import numpy as np
 from sandbox.integrators import CODES as INTEGRATORS
 from sandbox.orientation import NAMES as ORIENTATIONS
 from sandbox.penetration import METHODS as PENETRATIONS
+from sandbox.settings import JOINT_SOLVERS
 from sandbox.solvers import KEEPS_IMPULSES
 
 # soft-step settings and their defaults, for a Settings that does not know them yet
@@ -55,7 +56,7 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     ctx["touch_margin"] = s.contact_margin
     for key, default in SOFT_DEFAULTS:
         ctx[key] = getattr(s, key, default)
-    ctx["joint_direct"] = getattr(s, "joint_solver", "direct") == "direct"
+    ctx["joint_solver"] = JOINT_SOLVERS.index(getattr(s, "joint_solver", "auto"))
     ctx["diverged"] = -1
     ctx["energy_limit"] = np.inf  # set by the world for a closed system (sandbox.energy_growth)
     ctx["awake"] = -1  # sleep: not known until a step has run

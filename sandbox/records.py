@@ -271,7 +271,7 @@ CONTEXT = np.dtype(
         ("contact_damping_ratio", F8),
         ("joint_hertz", F8),
         ("joint_damping_ratio", F8),
-        ("joint_direct", np.bool_),  # soft step: the joints solved together (not swept)
+        ("joint_solver", I8),  # soft step: index into sandbox.settings.JOINT_SOLVERS
         ("max_push_speed", F8),
         ("sleep", np.bool_),  # sleeping islands on
         # reported by the stages

@@ -26,7 +26,7 @@ INTEGRATORS = ("explicit_euler", "semi_implicit_euler", "verlet", "rk4", "analyt
 BROADPHASES = ("brute", "grid", "sap", "quadtree", "kdtree")
 SOLVERS = ("pairwise", "shock", "iterative", "soft")
 PENETRATIONS = ("half", "mass_weighted", "impulse")
-JOINT_SOLVERS = ("direct", "sweeps")
+JOINT_SOLVERS = ("auto", "direct", "sweeps")  # sandbox.joints.solve.AUTO, DIRECT, SWEEPS
 
 CHOICES = {
     "orientation": ORIENTATIONS,
@@ -168,10 +168,12 @@ class Settings:
         5.0, "number", "damping ratio of soft joints (solver: soft)", Range(0.0, 1e3), ge=0.0
     )
     joint_solver: str = _setting(
-        "direct",
+        "auto",
         "choice",
         "how the soft step solves its joints: all together by one linear solve per pass "
-        "(direct), or one at a time, iterations times per substep (sweeps) (solver: soft)",
+        "(direct), one at a time, iterations times per substep (sweeps), or direct where that "
+        "is cheaper, as along chains and trees, and sweeps for a wide net of joints (auto) "
+        "(solver: soft)",
         choices=JOINT_SOLVERS,
     )
     max_push_speed: float = _setting(

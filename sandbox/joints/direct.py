@@ -1,5 +1,5 @@
 """The joints of the soft step solved together, exactly: one linear solve per pass instead of
-sweeps (``settings.joint_solver: "direct"``, the default).
+sweeps (``settings.joint_solver: "direct"``; ``"auto"``, the default, where :func:`narrow`).
 
 Sweeps solve one joint at a time (Gauss-Seidel). Along a chain whose links are light and whose
 load is heavy (a ball of 100 links on a chain of 10), each joint's impulse is undone by the
@@ -29,13 +29,17 @@ reads the bodies' angular velocities, which a pass changes: one pass uses them a
 its start, a sweep as they are. On a chain whipping at tens of rad/s one pass can land metres
 per second from where the sweeps converge (the soft step lesson, section 6: 2.5 m/s, where the
 ten sweeps a substep would get are 12 m/s off); a second pass takes most of that out. The
-relax pass is the rigid case (c = 0, no bias); a closed loop's redundant row is dropped there.
-Motors and limits stay in sweeps, before the point rows, as in
+relax pass is the rigid case (c = 0, no bias). Where the joints close a loop (:func:`has_loop`)
+its rows can be redundant and the rigid system singular; a row that depends on those before it
+is dropped, but the arc correction's velocity targets are not quite consistent around a loop,
+and a nearly dependent row amplifies that (a 10 x 10 net of hinges blew up), so there the step
+sweeps the relax pass (:mod:`sandbox.joints.solve`). Motors and limits stay in sweeps, before the point rows, as in
 :func:`sandbox.joints.pivot.solve_pivot_soft`.
 
 Cost: K is sparse (rows couple only through a shared body) and Cholesky keeps its envelope
 (:func:`envelope`): along a chain listed in order each row reaches back two joints and a pass
-costs O(rows), about three sweeps' worth; a net of joints w rows wide costs O(rows w^2).
+costs O(rows), about three sweeps' worth; a net of joints w rows wide costs O(rows w^2), and
+``joint_solver: auto`` sweeps it instead (:func:`narrow`).
 """
 
 from __future__ import annotations
@@ -49,6 +53,7 @@ from sandbox.joints.pivot import pivot_point_error, solve_pivot_axial_soft
 from sandbox.math2d import cross, set_velocity, velocity_of
 from sandbox.records import JOINT_ROW, PIN, PIVOT
 
+NARROW = 100.0  # joint_solver auto: together while the mean squared reach is at most this
 DEPENDENT = 1e-9  # a pivot below this times its row's diagonal: a redundant row, dropped
 
 
@@ -226,6 +231,64 @@ def has_axial(joints) -> bool:
         j = joints[i]
         if j["kind"] == PIVOT and (j["has_motor"] or j["has_limits"]):
             return True
+    return False
+
+
+@njit
+def narrow(joints, bodies) -> bool:
+    """Whether solving the joints together costs no more than sweeping them (``joint_solver:
+    auto``): Cholesky's work is about the sum over rows of the envelope's width squared, a
+    sweep's the number of rows, so together pays while each joint reaches back, on average, at
+    most ``sqrt(NARROW)`` joints to the first one sharing a moving body with it (measured: a
+    chain reaches back 1, a 5 x 5 net of hinges about 10, where both ways cost the same, a
+    10 x 10 net about 20, where together costs 1.5 times as much; a 20 x 20 net 4 times)."""
+    n = bodies.shape[0]
+    lowest = np.full(n, joints.shape[0], dtype=np.int64)
+    work, count = 0.0, 0
+    for i in range(joints.shape[0]):
+        j = joints[i]
+        if j["kind"] != PIN and j["kind"] != PIVOT:
+            continue
+        reach = i
+        for x in (j["a"], j["b"]):
+            if bodies[x]["inv_mass"] != 0.0 or bodies[x]["inv_moment"] != 0.0:
+                lowest[x] = min(lowest[x], i)
+                reach = min(reach, lowest[x])
+        work += (i - reach) ** 2
+        count += 1
+    return work <= NARROW * count
+
+
+@njit
+def root(parent, x: int) -> int:
+    """The representative of ``x``'s set (union-find, halving the path on the way)."""
+    while parent[x] != x:
+        parent[x] = parent[parent[x]]
+        x = parent[x]
+    return x
+
+
+@njit
+def has_loop(joints, bodies) -> bool:
+    """Whether the pins and pivots close a loop through the moving bodies (everything that
+    cannot move counts as one ground). A loop can hold more rows than its bodies have degrees of
+    freedom (a four-bar linkage has none to spare, a net of hinges many), and the rigid system
+    of the relax pass is then singular."""
+    n = bodies.shape[0]
+    parent = np.arange(n + 1)  # n: the ground
+    for i in range(joints.shape[0]):
+        j = joints[i]
+        if j["kind"] != PIN and j["kind"] != PIVOT:
+            continue
+        ends = [n, n]
+        for side in range(2):
+            x = j["a"] if side == 0 else j["b"]
+            if bodies[x]["inv_mass"] != 0.0 or bodies[x]["inv_moment"] != 0.0:
+                ends[side] = x
+        a, b = root(parent, ends[0]), root(parent, ends[1])
+        if a == b:
+            return True
+        parent[a] = b
     return False
 
 

@@ -20,7 +20,7 @@ bias and relaxes them without (``solve_joints_soft_pass``): all together
 from __future__ import annotations
 
 from sandbox.jit import njit
-from sandbox.joints.direct import has_axial, solve_joints_direct
+from sandbox.joints.direct import has_axial, has_loop, narrow, solve_joints_direct
 from sandbox.joints.pin import (
     prepare_pin,
     solve_pin_position,
@@ -38,6 +38,8 @@ from sandbox.joints.pivot import (
     warm_start_pivot_soft,
 )
 from sandbox.records import PIN, PIVOT
+
+AUTO, DIRECT, SWEEPS = 0, 1, 2  # settings.joint_solver (sandbox.settings.JOINT_SOLVERS)
 
 
 @njit
@@ -132,12 +134,18 @@ def solve_joints_soft(joints, bodies, soft, use_bias: bool, inv_h: float) -> Non
 @njit
 def solve_joints_soft_pass(joints, bodies, joint_soft, use_bias: bool, context) -> None:
     """The joints' share of a soft substep's solve (``use_bias``) or relax pass: solved together
-    (:mod:`sandbox.joints.direct`), repeated ``iterations`` times in the solve only while
+    (:mod:`sandbox.joints.direct`; with ``joint_solver: auto`` only where its factorisation is
+    cheap, :func:`sandbox.joints.direct.narrow`), repeated ``iterations`` times in the solve only while
     motors or limits are swept beside the point rows; or swept, ``iterations`` times in the
-    solve (joints are few and a chain's error travels), once in the relax."""
+    solve (joints are few and a chain's error travels), once in the relax. Where the joints
+    close a loop (:func:`sandbox.joints.direct.has_loop`) the relax pass is swept: its rigid
+    system can be singular there, and the velocity targets the arc correction sets are not
+    quite consistent around a loop, which a solve together would amplify."""
     ctx = context[0]
     inv_h = 1.0 / (ctx["dt"] / ctx["substeps"])
-    direct = ctx["joint_direct"]
+    how = ctx["joint_solver"]
+    direct = how == DIRECT or (how == AUTO and narrow(joints, bodies))
+    direct = direct and (use_bias or not has_loop(joints, bodies))
     passes = ctx["iterations"] if use_bias and (not direct or has_axial(joints)) else 1
     for _ in range(passes):
         if direct:
