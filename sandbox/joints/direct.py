@@ -52,6 +52,7 @@ from sandbox.joints.pin import pin_rod_error
 from sandbox.joints.pivot import pivot_point_error, solve_pivot_axial_soft
 from sandbox.math2d import cross, set_velocity, velocity_of
 from sandbox.records import JOINT_ROW, PIN, PIVOT
+from sandbox.sleep import root  # union-find, as the sleeping islands use it
 
 NARROW = 100.0  # joint_solver auto: together while the mean squared reach is at most this
 DEPENDENT = 1e-9  # a pivot below this times its row's diagonal: a redundant row, dropped
@@ -257,15 +258,6 @@ def narrow(joints, bodies) -> bool:
         work += (i - reach) ** 2
         count += 1
     return work <= NARROW * count
-
-
-@njit
-def root(parent, x: int) -> int:
-    """The representative of ``x``'s set (union-find, halving the path on the way)."""
-    while parent[x] != x:
-        parent[x] = parent[parent[x]]
-        x = parent[x]
-    return x
 
 
 @njit
