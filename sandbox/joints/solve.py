@@ -14,7 +14,8 @@ Per step::
 The soft step (:mod:`sandbox.solvers.soft`) prepares them once per step
 (``prepare_joints_soft``) and in each substep warm starts them, then solves them with the soft
 bias and relaxes them without (``solve_joints_soft_pass``): all together
-(:mod:`sandbox.joints.direct`, the default) or one at a time (``solve_joints_soft``).
+(:mod:`sandbox.joints.direct`; by default wherever that is cheap) or one at a time
+(``solve_joints_soft``).
 """
 
 from __future__ import annotations
@@ -133,14 +134,17 @@ def solve_joints_soft(joints, bodies, soft, use_bias: bool, inv_h: float) -> Non
 
 @njit
 def solve_joints_soft_pass(joints, bodies, joint_soft, use_bias: bool, context) -> None:
-    """The joints' share of a soft substep's solve (``use_bias``) or relax pass: solved together
-    (:mod:`sandbox.joints.direct`; with ``joint_solver: auto`` only where its factorisation is
-    cheap, :func:`sandbox.joints.direct.narrow`), repeated ``iterations`` times in the solve only while
-    motors or limits are swept beside the point rows; or swept, ``iterations`` times in the
-    solve (joints are few and a chain's error travels), once in the relax. Where the joints
-    close a loop (:func:`sandbox.joints.direct.has_loop`) the relax pass is swept: its rigid
-    system can be singular there, and the velocity targets the arc correction sets are not
-    quite consistent around a loop, which a solve together would amplify."""
+    """The joints' share of a soft substep's solve (``use_bias``) or relax pass.
+
+    Solved together (:mod:`sandbox.joints.direct`; under ``joint_solver: auto`` only where the
+    factorisation is cheap, :func:`~sandbox.joints.direct.narrow`), once, or ``iterations``
+    times in the solve while motors or limits are swept beside the point rows. Or swept:
+    ``iterations`` times in the solve (joints are few and a chain's error travels), once in
+    the relax. Where the joints close a loop (:func:`~sandbox.joints.direct.has_loop`) the relax
+    pass is swept: its rigid system can be singular there, and the velocity targets of the arc
+    correction are not quite consistent around a loop, which a solve together would amplify."""
+    if joints.shape[0] == 0:
+        return
     ctx = context[0]
     inv_h = 1.0 / (ctx["dt"] / ctx["substeps"])
     how = ctx["joint_solver"]
