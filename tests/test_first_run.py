@@ -108,3 +108,17 @@ def test_compile_notice_on_a_terminal(monkeypatch):
     quiet.on_start(None)
     quiet.on_end(None)
     assert quiet.bar is None and not quiet.told
+
+
+def test_the_plain_python_note_ends_cleanly_without_a_background_warmup(monkeypatch):
+    # SANDBOX_WARMUP=off: no background compile starts, and the note says no more than it is
+    # (it ended in a dangling "; " before)
+    notes = []
+    monkeypatch.setattr(first_run, "note", notes.append)
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setenv("SANDBOX_WARMUP", "off")
+    monkeypatch.setattr(first_run, "engine_imported", lambda: False)
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
+    first_run.choose_engine_speed({"bodies": [{}] * 2}, 240)
+    assert os.environ.pop("SANDBOX_JIT") == "0"
+    assert notes == ["the engine is not compiled for this machine yet: this run is plain Python"]

@@ -41,8 +41,8 @@ def choose_engine_speed(spec: dict, steps: int) -> None:
     if len(spec["bodies"]) * steps <= PLAIN_BODY_STEPS:
         os.environ["SANDBOX_JIT"] = "0"
         started = start_background_warmup(CACHE_FOLDER)
-        later = "it compiles in the background for the next runs" if started else ""
-        note(f"the engine is not compiled for this machine yet: this run is plain Python; {later}")
+        later = "; it compiles in the background for the next runs" if started else ""
+        note(f"the engine is not compiled for this machine yet: this run is plain Python{later}")
     elif not has_kernel(step_kernel(spec)):
         note("compiling the engine for this machine, once: about half a minute; later runs load it")
 
