@@ -388,3 +388,20 @@ def test_an_interrupt_that_comes_back_as_another_error_still_exits_quietly(capsy
     assert capsys.readouterr().err == ""
     assert run_command(raise_over(ValueError("boom"))) == 1
     assert capsys.readouterr().err.startswith("error:")
+
+
+def test_an_error_a_swallowed_interrupt_caused_exits_as_the_interrupt(capsys):
+    # a library catches the KeyboardInterrupt of a Ctrl-C and fails otherwise (matplotlib once
+    # reported "Invalid affine transformation matrix" mid-render): still exit 130, quietly
+    from sandbox.cli.exits import run_command
+
+    def command() -> int:
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(1.0)  # the handler runs here
+        except KeyboardInterrupt:
+            raise ValueError("Invalid affine transformation matrix") from None
+        return 0
+
+    assert run_command(command) == 130
+    assert capsys.readouterr().err == ""

@@ -87,33 +87,40 @@ def describe(err: BaseException) -> tuple[int, str]:
 
 
 @contextlib.contextmanager
-def signals_as_exceptions() -> Iterator[None]:
-    """SIGTERM and SIGHUP raise :class:`Stopped` while the block runs (SIGINT already raises
-    ``KeyboardInterrupt``); a second signal while stopping is ignored, so cleanup finishes.
+def signals_as_exceptions() -> Iterator[list[int]]:
+    """SIGTERM and SIGHUP raise :class:`Stopped` while the block runs, SIGINT
+    ``KeyboardInterrupt``; a second signal while stopping is ignored, so cleanup finishes.
 
-    Signals the caller ignores (``nohup``, a background job) stay ignored. Only in the main
-    thread (elsewhere signals cannot be handled): there the block runs unchanged.
+    Yields the list of exit statuses (128 + the signal number) of the signals received, so a
+    caller can tell an error that an interrupt caused inside a library (which may swallow the
+    interrupt and fail otherwise: matplotlib once reported an invalid affine matrix) from a
+    real failure. Signals the caller ignores (``nohup``, a background job) stay ignored. Only in
+    the main thread (elsewhere signals cannot be handled): there the block runs unchanged.
     """
+    received: list[int] = []
     if threading.current_thread() is not threading.main_thread():
-        yield
+        yield received
         return
-    stopping = False
 
     def handler(signum, frame):
-        nonlocal stopping
-        if stopping:
+        if received:
             return
-        stopping = True
+        received.append(128 + signum)
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
         raise Stopped(signum, 128 + signum)
 
     saved = {}
-    for name in _HANDLED:
+    names = list(_HANDLED)
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        names.append("SIGINT")
+    for name in names:
         signum = getattr(signal, name, None)
         if signum is None or signal.getsignal(signum) is signal.SIG_IGN:
             continue
         saved[signum] = signal.signal(signum, handler)
     try:
-        yield
+        yield received
     finally:
         for signum, old in saved.items():
             signal.signal(signum, old)
@@ -144,8 +151,9 @@ def warnings_summarised(summary: list[str]) -> Iterator[None]:
 def run_command(command: Callable[[], int]) -> int:
     """Run ``command`` and turn every way it can end into an exit status and at most a line."""
     summary: list[str] = []
+    received: list[int] = []
     try:
-        with signals_as_exceptions(), warnings_summarised(summary):
+        with signals_as_exceptions() as received, warnings_summarised(summary):
             status = command()
     except KeyboardInterrupt:
         _traceback_if_debug()
@@ -162,6 +170,8 @@ def run_command(command: Callable[[], int]) -> int:
         stop = interrupt_behind(err)
         if stop is not None:
             return stop
+        if received:  # an interrupt a library swallowed and failed over
+            return received[0]
         status, line = describe(err)
         print(line, file=sys.stderr)
         return status
