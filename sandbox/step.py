@@ -51,6 +51,7 @@ from sandbox.jit import njit
 from sandbox.joints.solve import (
     prepare_joints,
     prepare_joints_soft,
+    soft_joint_plan,
     solve_joints_soft_pass,
     warm_start_joints,
     warm_start_joints_soft,
@@ -244,25 +245,26 @@ def fast_step(
 @njit
 def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work) -> None:
     """The soft step's substeps (:mod:`sandbox.solvers.soft`; Box2D v3's ``b2SolverStep``):
-    each integrates the velocities over h = dt / substeps, warm starts, solves the joints
-    (:func:`solve_joints_soft_pass`) and contacts with the soft bias, moves the bodies, and
-    relaxes (solves again without bias)."""
+    each integrates the velocities over h = dt / substeps, warm starts, solves the joints (as
+    :func:`~sandbox.joints.solve.soft_joint_plan` decided once for the step) and the contacts
+    with the soft bias, moves the bodies, and relaxes (solves again without bias)."""
     bodies, shapes, vertices, joints, _ = model
     ctx = context[0]
     h = ctx["dt"] / ctx["substeps"]
     joint_soft = softness(ctx["joint_hertz"], ctx["joint_damping_ratio"], h)
+    plan = soft_joint_plan(joints, bodies, context)
     for _ in range(ctx["substeps"]):
         integrate_velocities(model, context, h, work)
         warm_start_joints_soft(joints, bodies)
         if ctx["warm_start"]:
             warm_start(contacts, k, bodies)
-        solve_joints_soft_pass(joints, bodies, joint_soft, True, context)
+        solve_joints_soft_pass(joints, bodies, joint_soft, True, 1.0 / h, plan)
         solve_soft(contacts, k, bodies, context, True)
         plan_motion(bodies, h)
         if ccd:
             limit_ccd_motion(bodies, shapes, vertices, context)
         move_bodies(bodies, rot, context)
-        solve_joints_soft_pass(joints, bodies, joint_soft, False, context)
+        solve_joints_soft_pass(joints, bodies, joint_soft, False, 1.0 / h, plan)
         solve_soft(contacts, k, bodies, context, False)
 
 

@@ -133,25 +133,35 @@ def solve_joints_soft(joints, bodies, soft, use_bias: bool, inv_h: float) -> Non
 
 
 @njit
-def solve_joints_soft_pass(joints, bodies, joint_soft, use_bias: bool, context) -> None:
-    """The joints' share of a soft substep's solve (``use_bias``) or relax pass.
+def soft_joint_plan(joints, bodies, context) -> tuple[bool, bool, int]:
+    """How a soft step treats its joints, decided once per step (the joint graph does not change
+    within it): (solve them together in the biased pass, together in the relax pass, biased
+    passes per substep).
 
-    Solved together (:mod:`sandbox.joints.direct`; under ``joint_solver: auto`` only where the
-    factorisation is cheap, :func:`~sandbox.joints.direct.narrow`), once, or ``iterations``
-    times in the solve while motors or limits are swept beside the point rows. Or swept:
-    ``iterations`` times in the solve (joints are few and a chain's error travels), once in
-    the relax. Where the joints close a loop (:func:`~sandbox.joints.direct.has_loop`) the relax
+    Together (:mod:`sandbox.joints.direct`) under ``joint_solver: direct``, and under ``auto``
+    where the factorisation is cheap (:func:`~sandbox.joints.direct.narrow`); once, or
+    ``iterations`` times while motors or limits are swept beside the point rows. Swept:
+    ``iterations`` times in the solve (joints are few and a chain's error travels), once in the
+    relax. Where the joints close a loop (:func:`~sandbox.joints.direct.has_loop`) the relax
     pass is swept: its rigid system can be singular there, and the velocity targets of the arc
     correction are not quite consistent around a loop, which a solve together would amplify."""
+    ctx = context[0]
+    how = ctx["joint_solver"]
+    together = joints.shape[0] > 0 and (how == DIRECT or (how == AUTO and narrow(joints, bodies)))
+    relax_together = together and not has_loop(joints, bodies)
+    passes = ctx["iterations"] if not together or has_axial(joints) else 1
+    return together, relax_together, passes
+
+
+@njit
+def solve_joints_soft_pass(joints, bodies, joint_soft, use_bias: bool, inv_h: float, plan) -> None:
+    """The joints' share of a soft substep's solve (``use_bias``) or relax pass, as
+    :func:`soft_joint_plan` decided."""
     if joints.shape[0] == 0:
         return
-    ctx = context[0]
-    inv_h = 1.0 / (ctx["dt"] / ctx["substeps"])
-    how = ctx["joint_solver"]
-    direct = how == DIRECT or (how == AUTO and narrow(joints, bodies))
-    direct = direct and (use_bias or not has_loop(joints, bodies))
-    passes = ctx["iterations"] if use_bias and (not direct or has_axial(joints)) else 1
-    for _ in range(passes):
+    together, relax_together, passes = plan
+    direct = together if use_bias else relax_together
+    for _ in range(passes if use_bias else 1):
         if direct:
             solve_joints_direct(joints, bodies, joint_soft, use_bias, inv_h)
         else:
