@@ -20,6 +20,7 @@ SOFT_DEFAULTS = (
     ("joint_hertz", 120.0),
     ("joint_damping_ratio", 5.0),
     ("max_push_speed", 3.0),
+    ("hold_ratio", 10.0),
     ("sleep", False),
 )
 

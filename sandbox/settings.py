@@ -107,7 +107,7 @@ class Settings:
         "position passes from the ground up, a lower body held under a much heavier one, and "
         "overlap present at the start of a step pushed out at most at max_push_speed: overlapping "
         "spawns and heavy-on-light stacks hold (off: the slides' classic pass; the soft "
-        "step holds no lighter body, its contacts carry their own sag)",
+        "step's passes hold no lighter body, its contacts carry their own sag: see hold_ratio)",
     )
     renormalise: bool = _setting(
         True, "boolean", "renormalise matrix and complex orientations every step"
@@ -175,6 +175,15 @@ class Settings:
         "is cheaper, as along chains and trees, and sweeps for a wide net of joints (auto) "
         "(solver: soft)",
         choices=JOINT_SOLVERS,
+    )
+    hold_ratio: float = _setting(
+        10.0,
+        "number",
+        "a soft contact holds the lower body still when one more than this many times heavier "
+        "rests on it, so a light box is not squeezed out from under a heavy one (shock "
+        "propagation where the masses differ that much; 0: never) (solver: soft)",
+        Range(0.0, 1e9),
+        ge=0.0,
     )
     max_push_speed: float = _setting(
         3.0, "number", "fastest speed at which overlapping bodies are pushed apart", _SPEED, gt=0.0

@@ -67,7 +67,7 @@ from sandbox.solvers.common import (
     restitution,
     warm_start,
 )
-from sandbox.solvers.soft import prepare_soft, softness, solve_soft
+from sandbox.solvers.soft import hold_under_heavy_loads, prepare_soft, softness, solve_soft
 from sandbox.toi import limit_ccd_motion
 
 STAGES = (
@@ -276,6 +276,11 @@ def begin_soft(contacts, k: int, previous, model, context) -> None:
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
     prepare(contacts, k, previous, bodies, context)
+    ctx = context[0]
+    if ctx["hold_ratio"] > 0.0:
+        hold_under_heavy_loads(
+            contacts, k, bodies, ctx["gravity"], ctx["hold_ratio"], ctx["touch_margin"]
+        )
     prepare_soft(contacts, k, bodies, context)
     gather_forces(bodies)
     prepare_joints_soft(joints, bodies, context)
