@@ -7,8 +7,9 @@ Measured with the classic pass (``robust_positions: false``, the slides' pass): 
 spawned in one spot, one ends 19.9 m below the ground and the fastest moves at 19 m/s; the 1 kg
 box under 1000 kg is squeezed 1.6 m out sideways. The soft step separates the spawned pile the
 same way (its bias leaves overlap that began deeper than the slop plus one step's bounded push
-to the position stage), but holds no lighter body: its contacts carry their own sag, and heavy
-loads on light boxes are the soft step's issue."""
+to the position stage), but its position passes hold no lighter body: its contacts carry their
+own sag, and it holds a light body in its velocity passes instead (``settings.hold_ratio``,
+``tests/test_soft_mass_ratio.py``)."""
 
 from __future__ import annotations
 
