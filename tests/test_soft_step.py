@@ -52,11 +52,22 @@ def pyramid_run(seconds: float = 10.0, **settings) -> dict:
     reason="the issue's 1 cm is out of reach of soft contacts: each sags by its static error "
     "(g / omega^2 per load carried), added up over 40 rows: 122 mm at the defaults (4 substeps "
     "cap contacts at an eighth of the substep rate, 30 Hz), 30 mm with 8 substeps (60 Hz); "
-    "Box2D v3.1 116 and 29 mm. The soft step lesson, section 6",
+    "Box2D v3.1 116 and 29 mm. Held everywhere (hold_ratio below 1: shock propagation) it "
+    "drops 1 mm (the next test), but the forces are no longer the real ones. The soft step "
+    "lesson, section 6",
 )
 def test_pyramid_of_base_40_holds_at_the_defaults():
     # the bounds, at every step of the last 5 s (not only the last one)
     run = pyramid_run()
+    assert np.abs(run["drop"][300:]).max() < 0.01
+    assert run["turned"] < 1.0
+
+
+def test_pyramid_of_base_40_holds_when_every_load_is_held():
+    # hold_ratio 0.5: every box holds still the boxes it rests on (shock propagation), each
+    # contact carries one box on one box's effective mass, and the rows do not add up their
+    # sags: the bounds, at every step of the last 5 s (measured 1.04 mm, 0.00 degrees)
+    run = pyramid_run(hold_ratio=0.5)
     assert np.abs(run["drop"][300:]).max() < 0.01
     assert run["turned"] < 1.0
 
