@@ -965,18 +965,17 @@ print_table(["pyramid of 40", "lowest top drop, 1-2 s (mm)", "highest top drop, 
 # 122 mm, as $1/f^2$ predicts, and less than a quarter of the iterative solver's 130 mm. Its top
 # box moved 14 mm sideways. The price is more time per step (the table).
 #
-# The last row goes the other way, and past Box2D: `hold_ratio` 0.5 lets every box hold still
-# the boxes it rests on (the hold of "Mass ratios" below, for any body resting on one up to
-# twice as heavy: here all of them). That is shock propagation inside the soft step. Each contact then
-# carries one box's weight on one box's effective mass, a static error of about $g/\omega^2$,
-# and the rows no longer add their loads up: the top box is about 1 mm down, the issue's 1 cm
-# ten times over, at no extra cost per step. Why is it not the default? Because the forces
-# are no longer the real ones: a held box does not feel the weight on it, so the ground under
-# the pyramid carries only the bottom row's weight (the next cell adds up the ground's normal
-# impulses). Friction under a loaded box is then that of an unloaded one, and a pile drawn
-# with its contact forces (`--draw impulses`) would show every box carrying only itself. The
-# default holds only where the masses differ more than ten times, where the other choice is a
-# light box squeezed out.
+# The last row goes the other way, and past Box2D: `hold_ratio` 0.5 lets every box hold still the
+# boxes it rests on (the hold of "Mass ratios" below, for any body resting on one up to twice as
+# heavy: here all of them). That is shock propagation inside the soft step. Each contact then
+# carries one box's weight on one box's effective mass, a static error of about $g/\omega^2$, and
+# the rows no longer add their loads up: the top box is about 1 mm down, the issue's 1 cm ten
+# times over, at no extra cost per step. Why is it not the default? Because the forces are no
+# longer the real ones: a held box does not feel the weight on it, so the ground under the pyramid
+# carries only the bottom row's weight (the next cell adds up the ground's normal impulses).
+# Friction under a loaded box is then that of an unloaded one, and a pile drawn with its contact
+# forces (`--draw impulses`) would show every box carrying only itself. The default holds only
+# where the masses differ more than ten times, where the other choice is a light box squeezed out.
 
 
 # %%
@@ -1349,15 +1348,16 @@ print(f"impact speed sqrt(2 g h) = {math.sqrt(2 * G * 0.04):.3f} m/s; highest po
 #
 # </details>
 #
-# **3.** Predict, with the static error formula, how deep the 1 kg box sinks into the ground
-# and the 400 kg box into it when the soft step runs with neither the hold nor the position
-# pass (`hold_ratio` 0, `position_correction` off: section 6's last row). A contact has two points, each a spring of effective mass
-# $m_p = (1/m_a + 1/m_b + (\mathbf{r}_a\times\hat{\mathbf{n}})^2/I_a +
-# (\mathbf{r}_b\times\hat{\mathbf{n}})^2/I_b)^{-1}$, with $\mathbf{r}$ from each box's centre to
-# a corner ($|\mathbf{r}\times\hat{\mathbf{n}}| = 0.5$ m, $I = m/6$ for a box of 1 m); the two
-# springs share the load, $k = (m_{p,1} + m_{p,2})\,\omega^2$. At the defaults (4 substeps)
-# the contacts between the boxes are 30 Hz springs (the 60 Hz of `contact_hertz` capped at an
-# eighth of the 240 Hz substep rate), and contacts with the ground are twice as stiff (60 Hz).
+# **3.** Predict, with the static error formula, how deep the 1 kg box sinks into the ground and
+# the 400 kg box into it when the soft step runs with neither the hold nor the position pass
+# (`hold_ratio` 0, `position_correction` off: section 6's last row). A contact has two points,
+# each a spring of effective mass $m_p = (1/m_a + 1/m_b +
+# (\mathbf{r}_a\times\hat{\mathbf{n}})^2/I_a + (\mathbf{r}_b\times\hat{\mathbf{n}})^2/I_b)^{-1}$,
+# with $\mathbf{r}$ from each box's centre to a corner ($|\mathbf{r}\times\hat{\mathbf{n}}| = 0.5$
+# m, $I = m/6$ for a box of 1 m); the two springs share the load, $k = (m_{p,1} +
+# m_{p,2})\,\omega^2$. At the defaults (4 substeps) the contacts between the boxes are 30 Hz
+# springs (the 60 Hz of `contact_hertz` capped at an eighth of the 240 Hz substep rate), and
+# contacts with the ground are twice as stiff (60 Hz).
 
 # %%
 r_e3 = ratio_runs["soft, hold off, no position pass"]
