@@ -30,9 +30,9 @@ pushes of a pile's many overlapping pairs would otherwise add up to tens of m/s)
 
 Mass ratios: a soft contact is a spring of stiffness m_eff omega^2, and between a light body and
 a heavy one m_eff is about the light body's, so the heavy body's weight sinks it by
-(m_heavy / m_light) g / omega^2 (11 cm at 400:1 and 30 Hz), and sweeps share the load out slowly. A
-body resting on one more than ``settings.hold_ratio`` times lighter treats it as immovable
-(:func:`hold_under_heavy_loads`, shock propagation where the masses differ that much).
+(m_heavy / m_light) g / omega^2 (11 cm at 400:1 and 30 Hz), and sweeps share the load out
+slowly. A body resting on one more than ``settings.hold_ratio`` times lighter treats it as
+immovable (:func:`hold_under_heavy_loads`, shock propagation where the masses differ that much).
 
 Why substeps beat iterations at equal cost: an iteration shares one velocity error out among
 the constraints; a substep also moves the bodies, so each constraint then sees its real,
