@@ -72,11 +72,21 @@ def apply_tangent(va, vb, mass, p, nx: float, ny: float, impulse: float):
 
 
 @njit
+def point_masses(c, p) -> None:
+    """A used point's effective masses along the normal and the tangent, from the contact's
+    (1/m_a, 1/I_a, 1/m_b, 1/I_b) and the point's lever arms."""
+    im_a, ii_a, im_b, ii_b = masses(c)
+    # slides, "Collision Equation", step 1: k = 1/m_a + 1/m_b + (r_a x n)^2/I_a + (r_b x n)^2/I_b
+    kn = effective_mass(im_a, ii_a, im_b, ii_b, p["rn_a"], p["rn_b"])
+    kt = effective_mass(im_a, ii_a, im_b, ii_b, p["rt_a"], p["rt_b"])
+    p["normal_mass"], p["tangent_mass"] = inverse_or_zero(kn), inverse_or_zero(kt)
+
+
+@njit
 def prepare_point(c, p, bodies, inv_dt: float, beta: float, slop: float) -> None:
     """Lever arms, effective masses, velocity target and approach speed of one used point."""
     a, b = bodies[c["a"]], bodies[c["b"]]
     nx, ny = c["normal"][0], c["normal"][1]
-    im_a, ii_a, im_b, ii_b = masses(c)
     point = p["point"]
     x, y = point[0], point[1]
     com_a, cs_a, local_a = a["com"], a["cs"], p["local_a"]
@@ -88,10 +98,7 @@ def prepare_point(c, p, bodies, inv_dt: float, beta: float, slop: float) -> None
     rn_a, rn_b = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
     rt_a, rt_b = cross(rax, ray, ny, -nx), cross(rbx, rby, ny, -nx)
     p["rn_a"], p["rn_b"], p["rt_a"], p["rt_b"] = rn_a, rn_b, rt_a, rt_b
-    # slides, "Collision Equation", step 1: k = 1/m_a + 1/m_b + (r_a x n)^2/I_a + (r_b x n)^2/I_b
-    kn = effective_mass(im_a, ii_a, im_b, ii_b, rn_a, rn_b)
-    kt = effective_mass(im_a, ii_a, im_b, ii_b, rt_a, rt_b)
-    p["normal_mass"], p["tangent_mass"] = inverse_or_zero(kn), inverse_or_zero(kt)
+    point_masses(c, p)
     # the velocities have not had this step's gravity yet: the speed the bodies arrived with
     va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
     p["approach_speed"] = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n

@@ -45,8 +45,15 @@ from __future__ import annotations
 import math
 
 from sandbox.jit import njit
-from sandbox.math2d import effective_mass, inverse_or_zero, rotate, set_velocity, velocity_of
-from sandbox.solvers.common import apply_normal, apply_tangent, masses, normal_speed, tangent_speed
+from sandbox.math2d import rotate, set_velocity, velocity_of
+from sandbox.solvers.common import (
+    apply_normal,
+    apply_tangent,
+    masses,
+    normal_speed,
+    point_masses,
+    tangent_speed,
+)
 from sandbox.solvers.shock import contact_layers, touching
 
 STATIC_STIFFNESS = 2.0  # contacts with a body that cannot move are this many times stiffer
@@ -138,7 +145,7 @@ def hold_under_heavy_loads(contacts, k: int, bodies, gravity, ratio: float, gap:
         la, lb = layer[c["a"]], layer[c["b"]]
         if la == lb or not touching(c, gap):
             continue
-        im_a, ii_a, im_b, ii_b = masses(c)
+        im_a, im_b = c["inv_mass_a"], c["inv_mass_b"]
         lower, upper = (im_a, im_b) if la < lb else (im_b, im_a)
         up = -(c["normal"][0] * gravity[0] + c["normal"][1] * gravity[1]) / g  # n . up, a to b
         if la > lb:
@@ -146,16 +153,11 @@ def hold_under_heavy_loads(contacts, k: int, bodies, gravity, ratio: float, gap:
         if lower == 0.0 or upper * ratio >= lower or up < HOLD_SLOPE:
             continue
         if la < lb:
-            im_a = ii_a = 0.0
             c["inv_mass_a"] = c["inv_moment_a"] = 0.0
         else:
-            im_b = ii_b = 0.0
             c["inv_mass_b"] = c["inv_moment_b"] = 0.0
         for j in range(c["count"]):
-            p = c["points"][j]
-            kn = effective_mass(im_a, ii_a, im_b, ii_b, p["rn_a"], p["rn_b"])
-            kt = effective_mass(im_a, ii_a, im_b, ii_b, p["rt_a"], p["rt_b"])
-            p["normal_mass"], p["tangent_mass"] = inverse_or_zero(kn), inverse_or_zero(kt)
+            point_masses(c, c["points"][j])
         held += 1
     return held
 
