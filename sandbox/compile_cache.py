@@ -133,6 +133,16 @@ def is_warm() -> bool:
     return CACHE_FOLDER is not None and (CACHE_FOLDER / WARM_FILE).exists()
 
 
+def step_kernel(shapes: int, joints: int, solver: str) -> str:
+    """The one-call step (a kernel of :mod:`sandbox.step`) a world of ``shapes`` shapes and
+    ``joints`` joints under ``solver`` runs: ``free_step`` when nothing can touch, else
+    ``soft_step`` or ``fast_step``. The world chooses by it; the command line asks it before
+    importing the engine (whether that kernel is compiled yet)."""
+    if solver == "soft":
+        return "soft_step"
+    return "free_step" if shapes < 2 and joints == 0 else "fast_step"
+
+
 def has_kernel(name: str) -> bool:
     """Whether an earlier run left compiled code of ``name``, a kernel of
     :mod:`sandbox.step` (``"fast_step"``, ``"soft_step"``), in the cache folder: numba's index

@@ -15,6 +15,7 @@ import numpy as np
 
 import sandbox.orientation as orientation
 from sandbox.body import DYNAMIC, Body
+from sandbox.compile_cache import step_kernel
 from sandbox.contact import ContactBuffers, Manifolds, find_contacts
 from sandbox.context import fill_context
 from sandbox.energy_growth import energy_limit
@@ -336,12 +337,13 @@ class World(Building, Measures):
             return
         fast = self._fast and self.timer is None
         model = (self.state, self.rot, g.table, g.vertices, self.joint_table, self.generator_table)
-        if fast and len(g) < 2 and not len(self.joint_table) and s.solver != "soft":
+        kernel = step_kernel(len(g), len(self.joint_table), s.solver)
+        if fast and kernel == "free_step":
             args = (*model, self.context, self._work)
             self._run = _bind(entry(free_step, *args), *args)
         elif fast:
             args = (*model, b.sets, b.proxies, b.pairs, self.context, self._work)
-            one_call = soft_step if s.solver == "soft" else fast_step
+            one_call = soft_step if kernel == "soft_step" else fast_step
             self._run = _bind(entry(one_call, *args), *args)
         else:
             self._run = lambda: staged_step(self, self.timer)

@@ -43,17 +43,18 @@ def choose_engine_speed(spec: dict, steps: int) -> None:
         started = start_background_warmup(CACHE_FOLDER)
         later = "; it compiles in the background for the next runs" if started else ""
         note(f"the engine is not compiled for this machine yet: this run is plain Python{later}")
-    elif not has_kernel(step_kernel(spec)):
+    elif not has_kernel(scene_kernel(spec)):
         note("compiling the engine for this machine, once: about half a minute; later runs load it")
 
 
-def step_kernel(spec: dict) -> str:
-    """The compiled step a validated scene runs (:meth:`sandbox.world.World._choose_path`):
-    ``free_step`` when nothing can touch, else the soft or the rigid one-call step."""
-    if spec.get("settings", {}).get("solver") == "soft":
-        return "soft_step"
+def scene_kernel(spec: dict) -> str:
+    """The compiled step a validated scene runs, by the world's own rule
+    (:func:`sandbox.compile_cache.step_kernel`)."""
+    from sandbox.compile_cache import step_kernel
+
     shapes = sum(len(body.get("shapes", [])) for body in spec["bodies"])
-    return "free_step" if shapes < 2 and not spec.get("joints") else "fast_step"
+    solver = spec.get("settings", {}).get("solver", "")
+    return step_kernel(shapes, len(spec.get("joints", [])), solver)
 
 
 def engine_imported() -> bool:
