@@ -59,6 +59,13 @@ DEPENDENT = 1e-9  # a pivot below this times its row's diagonal: a redundant row
 
 
 @njit
+def moves(body) -> bool:
+    """Whether an impulse can move the body (it has a finite mass or moment of inertia): a body
+    that cannot move couples no joints and closes no loops."""
+    return body["inv_mass"] != 0.0 or body["inv_moment"] != 0.0
+
+
+@njit
 def count_rows(joints) -> int:
     """Point rows of the pins (one each) and pivots (two each)."""
     m = 0
@@ -252,7 +259,7 @@ def narrow(joints, bodies) -> bool:
             continue
         reach = i
         for x in (j["a"], j["b"]):
-            if bodies[x]["inv_mass"] != 0.0 or bodies[x]["inv_moment"] != 0.0:
+            if moves(bodies[x]):
                 lowest[x] = min(lowest[x], i)
                 reach = min(reach, lowest[x])
         work += (i - reach) ** 2
@@ -275,7 +282,7 @@ def has_loop(joints, bodies) -> bool:
         ends = [n, n]
         for side in range(2):
             x = j["a"] if side == 0 else j["b"]
-            if bodies[x]["inv_mass"] != 0.0 or bodies[x]["inv_moment"] != 0.0:
+            if moves(bodies[x]):
                 ends[side] = x
         a, b = root(parent, ends[0]), root(parent, ends[1])
         if a == b:
@@ -298,7 +305,7 @@ def solve_joints_direct(joints, bodies, soft, use_bias: bool, inv_h: float) -> N
     gather_rows(joints, bodies, soft, use_bias, rows)
     moving = np.empty(bodies.shape[0], dtype=np.bool_)
     for x in range(bodies.shape[0]):
-        moving[x] = bodies[x]["inv_mass"] != 0.0 or bodies[x]["inv_moment"] != 0.0
+        moving[x] = moves(bodies[x])
     first, start = np.empty(m, dtype=np.int64), np.empty(m + 1, dtype=np.int64)
     envelope(rows, moving, first, start)
     a, delta = np.empty(start[m]), np.empty(m)
