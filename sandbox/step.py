@@ -67,7 +67,13 @@ from sandbox.solvers.common import (
     restitution,
     warm_start,
 )
-from sandbox.solvers.soft import hold_under_heavy_loads, prepare_soft, softness, solve_soft
+from sandbox.solvers.soft import (
+    hold_under_heavy_loads,
+    prepare_soft,
+    soft_order,
+    softness,
+    solve_soft,
+)
 from sandbox.toi import limit_ccd_motion
 
 STAGES = (
@@ -125,10 +131,11 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
 
 
 @njit
-def prepare(contacts, k: int, previous, bodies, context) -> None:
-    """Stage 3: :func:`sandbox.solvers.common.prepare_contacts`, then the warm-start impulses."""
+def prepare(contacts, k: int, previous, bodies, context, block: bool = True) -> None:
+    """Stage 3: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
+    unless ``block`` is False: the soft step has none), then the warm-start impulses."""
     ctx = context[0]
-    prepare_contacts(contacts, k, bodies, 0.0, context)
+    prepare_contacts(contacts, k, bodies, 0.0, context, block)
     found = 0
     if ctx["warm_start"]:
         found = match_previous(contacts, k, previous, ctx["contact_count"][ctx["contact_set"]])
@@ -253,19 +260,20 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work) -> Non
     h = ctx["dt"] / ctx["substeps"]
     joint_soft = softness(ctx["joint_hertz"], ctx["joint_damping_ratio"], h)
     plan = soft_joint_plan(joints, bodies, context)
+    order = soft_order(contacts, k)
     for _ in range(ctx["substeps"]):
         integrate_velocities(model, context, h, work)
         warm_start_joints_soft(joints, bodies)
         if ctx["warm_start"]:
             warm_start(contacts, k, bodies)
         solve_joints_soft_pass(joints, bodies, joint_soft, True, 1.0 / h, plan)
-        solve_soft(contacts, k, bodies, context, True)
+        solve_soft(contacts, order, bodies, context, True)
         plan_motion(bodies, h)
         if ccd:
             limit_ccd_motion(bodies, shapes, vertices, context)
         move_bodies(bodies, rot, context)
         solve_joints_soft_pass(joints, bodies, joint_soft, False, 1.0 / h, plan)
-        solve_soft(contacts, k, bodies, context, False)
+        solve_soft(contacts, order, bodies, context, False)
 
 
 @njit
@@ -275,7 +283,7 @@ def begin_soft(contacts, k: int, previous, model, context) -> None:
     bodies, joints = model[0], model[3]
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
-    prepare(contacts, k, previous, bodies, context)
+    prepare(contacts, k, previous, bodies, context, False)
     ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(

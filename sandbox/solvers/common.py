@@ -137,10 +137,11 @@ def prepare_block(c) -> None:
 
 
 @njit
-def prepare_contacts(contacts, k: int, bodies, beta: float, context) -> None:
+def prepare_contacts(contacts, k: int, bodies, beta: float, context, block: bool = True) -> None:
     """Prepare the first ``k`` contacts: copy the bodies' inverse masses, zero the impulses,
-    then :func:`prepare_point` and :func:`prepare_block`. ``beta``: the Baumgarte factor of the
-    velocity bias (the rigid solvers pass 0 and fix overlap on positions instead)."""
+    then :func:`prepare_point` and, for a solver that has a block solver (``block``),
+    :func:`prepare_block`. ``beta``: the Baumgarte factor of the velocity bias (the rigid
+    solvers pass 0 and fix overlap on positions instead)."""
     ctx = context[0]
     inv_dt, slop = ctx["inv_dt"], ctx["slop"]
     for i in range(k):
@@ -157,7 +158,10 @@ def prepare_contacts(contacts, k: int, bodies, beta: float, context) -> None:
             p["max_normal_impulse"] = p["bounce_impulse"] = 0.0
             if j < count:
                 prepare_point(c, p, bodies, inv_dt, beta, slop)
-        prepare_block(c)
+        if block:
+            prepare_block(c)
+        else:
+            c["use_block"] = False
 
 
 @njit

@@ -44,6 +44,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from sandbox.jit import njit
 from sandbox.math2d import rotate, set_velocity, velocity_of
 from sandbox.solvers.common import (
@@ -54,6 +56,7 @@ from sandbox.solvers.common import (
     point_masses,
     tangent_speed,
 )
+from sandbox.solvers.iterative import visit
 from sandbox.solvers.shock import contact_layers, touching
 
 STATIC_STIFFNESS = 2.0  # contacts with a body that cannot move are this many times stiffer
@@ -193,7 +196,7 @@ def excess_depth(c, p) -> float:
     return p["depth"] - load_sag(c, p)
 
 
-@njit
+@njit(inline="always")  # compiled into solve_soft itself, as the iterative sweep's visits
 def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     """One contact: the normal impulses (soft, or rigid without bias in the relax pass), then
     friction within the cone of the current normal impulse (Box2D v3's order). ``push`` =
@@ -234,15 +237,35 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
 
 
 @njit
-def solve_soft(contacts, k: int, bodies, context, use_bias: bool) -> None:
-    """One pass over the first ``k`` contacts: with the soft bias (solve) or without (relax)."""
-    ctx = context[0]
-    inv_h = ctx["substeps"] / ctx["dt"]
-    push = (ctx["max_push_speed"], ctx["deep_overlap"])
-    # contacts between moving bodies first, then those with a body that cannot move: the
-    # ground has the last word in each pass, so what rests on it is not pushed into it
+def soft_order(contacts, k: int):
+    """The order every pass of this step visits the first ``k`` contacts: those between moving
+    bodies first, then those with a body that cannot move (the ground has the last word in
+    each pass, so what rests on it is not pushed into it); within each group alternately from
+    its two halves (:func:`sandbox.solvers.iterative.visit`, so the processor overlaps two
+    visits that rarely share a body)."""
+    order = np.empty(k, dtype=np.int64)
+    start = 0
     for fixed in (False, True):
+        end = start
         for i in range(k):
             c = contacts[i]
             if (c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0) == fixed:
-                solve_soft_contact(c, bodies, inv_h, use_bias, push)
+                order[end] = i
+                end += 1
+        group = order[start:end].copy()
+        half = (group.shape[0] + 1) // 2
+        for q in range(group.shape[0]):
+            order[start + q] = group[visit(q, half)]
+        start = end
+    return order
+
+
+@njit
+def solve_soft(contacts, order, bodies, context, use_bias: bool) -> None:
+    """One pass over the contacts in ``order`` (:func:`soft_order`): with the soft bias
+    (solve) or without (relax)."""
+    ctx = context[0]
+    inv_h = ctx["substeps"] / ctx["dt"]
+    push = (ctx["max_push_speed"], ctx["deep_overlap"])
+    for q in range(order.shape[0]):
+        solve_soft_contact(contacts[order[q]], bodies, inv_h, use_bias, push)
