@@ -154,7 +154,7 @@ def set_angles(kind: int, rot: np.ndarray, angles: np.ndarray) -> None:
         set_angle_row(kind, rot, i, angles[i])
 
 
-@njit
+@njit(inline="always")
 def turn_row(kind: int, rot: np.ndarray, i: int, d: float, renormalise: bool) -> None:
     """Turn row i of ``rot`` by the angle increment d = omega dt in the layout of ``kind``."""
     if kind == ANGLE:
@@ -182,7 +182,7 @@ def turn_row(kind: int, rot: np.ndarray, i: int, d: float, renormalise: bool) ->
         rot[i, 0], rot[i, 1], rot[i, 2], rot[i, 3] = n00, n01, n10, n11
 
 
-@njit
+@njit(inline="always")
 def cos_sin_row(kind: int, rot: np.ndarray, i: int) -> tuple[float, float]:
     """(cos, sin) of the orientation in row i, as collision code reads it."""
     if kind == ANGLE:
@@ -207,7 +207,7 @@ def cos_sin(kind: int, rot: np.ndarray, cs: np.ndarray) -> None:
         cs[i, 0], cs[i, 1] = cos_sin_row(kind, rot, i)
 
 
-@njit
+@njit(inline="always")
 def turn_body(bodies, rot: np.ndarray, i: int, kind: int, d: float, renormalise: bool) -> None:
     """Turn body i by d radians: its stored orientation, its (cos, sin) read back from it, and
     its continuous angle, the sum of every turn (so turns accumulate whatever the
