@@ -320,11 +320,11 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 # about in proportion to the length: 5.0, 8.4, 17.9 and 31.7 mm for 5 to 40 links.
 #
 # With its defaults the soft step does no better on the pyramids: it sags more on the small
-# ones (2.0 against 0.70 mm at base 5, 7.5 against 5.7 at base 10) and about as much on the
-# large ones (30 against 28 mm at base 20, 122 against 130 mm at base 40). Its sag is the static
+# ones (2.0 against 0.70 mm at base 5, 7.6 against 5.7 at base 10) and about as much on the
+# large ones (30 against 28 mm at base 20, 123 against 130 mm at base 40). Its sag is the static
 # error of its springs (section 2), added up along the load path: every row of boxes is a row
 # of springs squeezed by the weight above it, which grows with the row's depth, so the top box
-# drops about four times as far each time the base doubles (2.0, 7.5, 30, 122 mm), as the
+# drops about four times as far each time the base doubles (2.0, 7.6, 30, 123 mm), as the
 # square of the height. At the defaults those springs are soft: the contacts between boxes run
 # at 30 Hz, not the 60 Hz of `contact_hertz` (the cap of section 3). Joints have no such cap
 # (they are 120 Hz springs, solved all together: section 6), and on the chains the soft step
@@ -623,12 +623,12 @@ save_figure(fig, OUT / "substeps_vs_iterations.png", dpi=100)
 
 # %% [markdown]
 # Doubling the sweeps about halves the iterative sag (94, 42, 18, 7.2 mm: the $1/N$ of lesson
-# 09); doubling the substeps at the stiffness cap divides the soft sag by four (123, 30, 7.5,
+# 09); doubling the substeps at the stiffness cap divides the soft sag by four (124, 30, 7.5,
 # 1.9 mm: the $1/S^2$ of the static error). So the two lines cross. Read the figure at equal
-# cost (one vertical line); in the table, $S$ substeps cost a little more (10 to 35% in this
-# run) than $N = 2.5\,S$ sweeps. With 2 substeps, whose contacts are 15 Hz springs, the soft
-# step sags more than 5 sweeps do (123 against 94 mm). At the defaults' cost, 4 substeps
-# against 10 sweeps, the two are close (30 against 42 mm). From 8 substeps on, substeps win, and
+# cost (one vertical line); in the table, $S$ substeps cost about as much as $N = 2.5\,S$
+# sweeps (from 4% less to 11% more when this was written). With 2 substeps, whose contacts
+# are 15 Hz springs, the soft step sags more than 5 sweeps do (124 against 94 mm). At the
+# defaults' cost, 4 substeps against 10 sweeps, the two are close (30 against 42 mm). From 8 substeps on, substeps win, and
 # by more the more you spend: 8 substeps sag 7.5 mm where 20 sweeps sag 18, and 40 sweeps,
 # which cost more than 8 substeps, still sag 7.2; 16 substeps sag 1.9 mm where 40 sweeps sag
 # 7.2. (The ms per step vary by tens of percent from run to run on a shared machine;
@@ -906,9 +906,9 @@ for name, view in views.items():
 #
 # - **pyramid of 40**: pairwise collapses (the top box is 19 m down after 2 s); shock
 #   propagation holds it (its top box even rose 1.8 mm in 2 s); iterative sags 13.0 cm and
-#   stays there; pymunk 23.7 cm after 3 s, still sinking. The soft step sags 12.2 cm, about as
-#   much as the iterative solver, and stays there too (between 122.1 and 122.2 mm over the
-#   last 5 s); its top box moved 4.6 cm sideways in 10 s, all of it while the pyramid settled
+#   stays there; pymunk 23.7 cm after 3 s, still sinking. The soft step sags 12.3 cm, about as
+#   much as the iterative solver, and stays there too (between 123.2 and 123.3 mm over the
+#   last 5 s); its top box moved 3.0 cm sideways in 10 s, all of it while the pyramid settled
 #   (section 6), where the iterative one moved 1 mm. In the animation the soft and iterative
 #   pyramids lie almost on top of each other.
 # - **chain**: soft 2.7 mm at worst, iterative and shock 17.9 mm (shock propagation only
@@ -924,7 +924,7 @@ for name, view in views.items():
 #
 # **Tall stacks sag with the defaults.** With 4 substeps the contacts are capped at
 # $1/(8h)$ = 30 Hz, half the 60 Hz that `contact_hertz` asks for, and the pyramid of base 40
-# sags 12.2 cm, no better than the iterative solver. Why not allow stiffer contacts at 4
+# sags 12.3 cm, no better than the iterative solver. Why not allow stiffer contacts at 4
 # substeps? The soft step solves each contact once per substep, in turn, with the others'
 # impulses of the moment: for one spring that is exact implicit Euler (section 2), for a stack
 # of springs only an approximation of it, and the approximation gets worse as $h\omega$ grows.
@@ -934,7 +934,7 @@ for name, view in views.items():
 # below its start, and the ringing walked the upper rows 1.3 m sideways. Box2D v3.1's own
 # solver, with its cap set back to a quarter, rings the same way (its top box between 3 mm
 # above and 60 mm below its start, 0.46 m sideways); Box2D v3.1 moved the cap to an eighth
-# ($h\omega = \pi/4$), where both rest: this engine's top box 122 mm down, Box2D's 116 mm. (The
+# ($h\omega = \pi/4$), where both rest: this engine's top box 123 mm down, Box2D's 116 mm. (The
 # cap is not a setting, so this lesson cannot rerun the quarter; those numbers were measured
 # when the cap changed.)
 #
@@ -958,12 +958,12 @@ print_table(["pyramid of 40", "lowest top drop, 1-2 s (mm)", "highest top drop, 
              "top box moved sideways at 2 s (mm)", "ms per step"], rows, 2)  # fmt: skip
 
 # %% [markdown]
-# With the defaults the top box is between 121.0 and 123.0 mm down from 1 s to 2 s, still
-# settling (it ends between 122.1 and 122.2 mm, section 5), and it moved 49 mm sideways by 2 s,
-# while it settled; by 10 s it had crept back to 46 mm (0.3 mm/s). With 8 substeps it is at
+# With the defaults the top box is between 122.3 and 124.3 mm down from 1 s to 2 s, still
+# settling (it ends between 123.2 and 123.3 mm, section 5), and it moved 31 mm sideways by 2 s,
+# while it settled; by 10 s it had crept back to 30 mm (0.15 mm/s). With 8 substeps it is at
 # rest within a second, 30.2 mm down (to 0.06 mm from 1 s to 2 s): a quarter of the defaults'
-# 122 mm, as $1/f^2$ predicts, and less than a quarter of the iterative solver's 130 mm. Its top
-# box moved 14 mm sideways. The price is more time per step (the table).
+# 123 mm, as $1/f^2$ predicts, and less than a quarter of the iterative solver's 130 mm. Its top
+# box moved 12 mm sideways. The price is more time per step (the table).
 #
 # The last row goes the other way, and past Box2D: `hold_ratio` 0.5 lets every box hold still the
 # boxes it rests on (the hold of "Mass ratios" below, for any body resting on one up to twice as
@@ -996,8 +996,8 @@ print_table(["pyramid of 40, soft", "share of the weight the ground carries"],
             [(f"hold_ratio {r}", ground_share(r)) for r in (10.0, 0.5)], 3)  # fmt: skip
 
 # %% [markdown]
-# With the default the ground carries the whole pyramid (1.000); held everywhere, 0.049 of it:
-# the 40 boxes of the bottom row out of 820.
+# With the default the ground carries the whole pyramid (1.002: it still settles by a hair at
+# 2 s); held everywhere, 0.049 of it: the 40 boxes of the bottom row out of 820.
 #
 # **The chains.** The issue asks for a worst stretch under 5 mm (20 links) and under 1 cm (the
 # heavy chain). With the defaults (4 substeps, joints at 120 Hz with damping ratio 5, solved
@@ -1166,7 +1166,7 @@ print_table(["joint_hertz (Hz)", "h omega", "chain: worst stretch (mm)",
 # chain stretches 12 to 14 mm from 30 to 60 Hz, where swept it stretches 47 to 185 mm. At
 # 120 Hz ($h\omega = \pi$ at the default step) both chains are within the issue's bounds
 # (2.7 and 7.8 mm). Past it the results turn erratic both ways (6.9 mm at 180 Hz and 10.4 mm
-# at 360 Hz for the chain solved together, 45.5 mm at 480 Hz for the heavy chain swept): the
+# at 360 Hz for the chain solved together, 45.4 mm at 480 Hz for the heavy chain swept): the
 # substep no longer follows the spring, and since the worst stretch is the peak of a chaotic
 # swing, one run says little about its neighbours. $h\omega$ grows with the step: at
 # dt = 1/30 s, 120 Hz is where 240 Hz is here, so 120 Hz keeps a margin of two. 8 substeps help
@@ -1287,7 +1287,7 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 #   7.2 for 40), and on the 400:1 boxes (0.1 mm each against the iterative solver's 5 mm slop),
 #   where it holds the light box still as shock propagation does;
 # - **it ties** on pyramids with the defaults, where its contacts are capped at 30 Hz: 30
-#   against 28 mm at base 20, 122 against 130 mm at base 40, both at rest; it sags more on small
+#   against 28 mm at base 20, 123 against 130 mm at base 40, both at rest; it sags more on small
 #   stacks (2.0 against 0.70 mm at base 5);
 # - **it loses** on bounces, which fall shorter (apexes 3%, 10%, 26% below $e^{2n}h$, against
 #   0.3%, 6%, 13%). 8 substeps make the pyramid four times stiffer (3.0 cm down), at a higher
