@@ -89,12 +89,11 @@ def prepare_soft(contacts, k: int, bodies, context) -> None:
     h = ctx["dt"] / ctx["substeps"]
     hertz = min(ctx["contact_hertz"], MAX_CONTACT_HERTZ_PER_RATE / h)
     zeta = ctx["contact_damping_ratio"]
+    moving, static = softness(hertz, zeta, h), softness(STATIC_STIFFNESS * hertz, zeta, h)
     for i in range(k):
         c = contacts[i]
         fixed = c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0  # the ground, or held
-        rate, mass_scale, impulse_scale = softness(
-            STATIC_STIFFNESS * hertz if fixed else hertz, zeta, h
-        )
+        rate, mass_scale, impulse_scale = static if fixed else moving
         c["soft_bias_rate"], c["soft_mass_scale"] = rate, mass_scale
         c["soft_impulse_scale"] = impulse_scale
         nx, ny = c["normal"][0], c["normal"][1]
