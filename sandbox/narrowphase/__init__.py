@@ -150,7 +150,7 @@ def collide_into(pairs, npairs, shapes, vertices, bodies, joints, margin, contac
     return k
 
 
-@njit
+@njit(inline="always")
 def pair_manifold(i: int, j: int, shapes, wp, bodies, joints, margin: float, c) -> bool:
     """Shape pair (i, j)'s manifold into the CONTACT record ``c``; False (``c`` untouched) when
     the shapes share a body or a joint, are out of reach or do not touch. ``wp``: the placed
@@ -171,13 +171,9 @@ def pair_manifold(i: int, j: int, shapes, wp, bodies, joints, margin: float, c) 
     p = c["points"][0]
     point = p["point"]
     point[0], point[1], p["depth"], p["feature"] = x0, y0, d0, f0
-    p = c["points"][1]
+    p = c["points"][1]  # an unused second slot: zeros and feature -1 (as collide_pair gives)
     point = p["point"]
-    if count == 2:
-        point[0], point[1], p["depth"], p["feature"] = x1, y1, d1, f1
-    else:
-        point[0] = point[1] = p["depth"] = 0.0
-        p["feature"] = -1
+    point[0], point[1], p["depth"], p["feature"] = x1, y1, d1, f1
     return True
 
 

@@ -111,9 +111,10 @@ def polygon_polygon(wp, o_a, c_a, o_b, c_b, prefer_a, margin):
     ``prefer_a``: polygon a keeps the reference face on near-ties (pass ``sa < sb`` so the
     choice is the same whichever order the pair comes in). Returns
     ``(count, nx, ny, x0, y0, depth0, feature0, x1, y1, depth1, feature1)`` with the normal
-    pointing from a to b; points with ``depth < -margin`` are dropped.
+    pointing from a to b; points with ``depth < -margin`` are dropped; an unused point is
+    zeros with feature -1.
     """
-    none = (0, 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0)
+    none = (0, 0.0, 0.0, 0.0, 0.0, 0.0, -1, 0.0, 0.0, 0.0, -1)
     # 1. separating axis test on both polygons' edge normals
     sep_a, edge_a = max_separation(wp, o_a, c_a, o_b, c_b)
     if sep_a > margin:
@@ -163,7 +164,7 @@ def polygon_polygon(wp, o_a, c_a, o_b, c_b, prefer_a, margin):
                 py = 0.5 * (wp[o1 + r, 1] + wp[o2 + k, 1])
                 fid = FEATURE_VERTEX_VERTEX + (k * 65536 + r if flip else r * 65536 + k)
                 ux, uy = sign * wx / dist, sign * wy / dist
-                return 1, ux, uy, px, py, -dist, fid, 0.0, 0.0, 0.0, 0
+                return 1, ux, uy, px, py, -dist, fid, 0.0, 0.0, 0.0, -1
 
     # 5. clip the incident edge to the reference face's side planes; t runs along the face
     tx, ty = -ny, nx
@@ -203,7 +204,7 @@ def polygon_polygon(wp, o_a, c_a, o_b, c_b, prefer_a, margin):
     if keep_l and keep_u:
         return 2, nx, ny, lx, ly, -sep_l, fid_l, ux, uy, -sep_u, fid_u
     if keep_l:
-        return 1, nx, ny, lx, ly, -sep_l, fid_l, 0.0, 0.0, 0.0, 0
+        return 1, nx, ny, lx, ly, -sep_l, fid_l, 0.0, 0.0, 0.0, -1
     if keep_u:
-        return 1, nx, ny, ux, uy, -sep_u, fid_u, 0.0, 0.0, 0.0, 0
+        return 1, nx, ny, ux, uy, -sep_u, fid_u, 0.0, 0.0, 0.0, -1
     return none
