@@ -6,10 +6,21 @@ and the staged step, every broadphase, every integrator with every kind of force
 collision, every joint; then the functions lessons call directly (pair finding with a trace of
 the tests, manifolds, distance and time of impact). When all of them ran, the cache is marked
 warm (:func:`sandbox.compile_cache.mark_warm`), which the command line reads.
+
+On a machine with two cores the families are shared out between two processes (:func:`part`),
+each compiling its share into the same cache; then this process steps every family once more,
+which loads what the other compiled and compiles whatever it missed. Measured on the project's
+2-core machine from an empty cache: 98 s for the two shares and 1.9 s for the pass after them
+(108 s in all in a second run), against 129 s in one process (numba compiles one function at
+a time per process, and the families share many functions, so two processes do not halve
+it).
 """
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -119,13 +130,47 @@ def helpers() -> None:
     )
 
 
-def warm_up(report=print) -> float:
-    """Compile (or load) every kernel; mark the cache warm. Returns the seconds it took."""
-    start = time.perf_counter()
-    for label, world, staged in worlds():
+def part(index: int, parts: int) -> list:
+    """Share ``index`` of ``parts`` of :func:`worlds`, dealt round-robin: (label, world,
+    staged) of every family whose place in the list is ``index`` modulo ``parts``."""
+    return [family for q, family in enumerate(worlds()) if q % parts == index]
+
+
+def warm_part(index: int, parts: int, report=print) -> None:
+    """Compile (or load) share ``index`` of ``parts`` of the families; the first share also
+    compiles the functions lessons call on their own (:func:`helpers`)."""
+    for label, world, staged in part(index, parts):
         step(world, staged=staged)
         world.find_contacts()
         report(f"  {label}: ready")
+    if index == 0:
+        helpers()
+
+
+def warm_up(report=print, jobs: int | None = None) -> float:
+    """Compile (or load) every kernel; mark the cache warm. Returns the seconds it took.
+    ``jobs``: processes to share the work between (default: 2 on a machine with two cores or
+    more, else 1; see the module)."""
+    start = time.perf_counter()
+    jobs = jobs or min(2, os.cpu_count() or 1)
+    others = [
+        subprocess.Popen(
+            [sys.executable, "-m", "sandbox", "warmup", "--quiet", "--part", f"{i}/{jobs}"],
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,  # one progress bar on the terminal: this process's
+        )
+        for i in range(1, jobs)
+    ]
+    warm_part(0, jobs, report)
+    for process in others:
+        process.wait()
+    done = {label for label, _, _ in part(0, jobs)}
+    for label, world, staged in worlds():  # the others' shares: loaded, or compiled if missed
+        step(world, staged=staged)
+        world.find_contacts()
+        if label not in done:
+            report(f"  {label}: ready")
     helpers()
     mark_warm()
     if CACHE_FOLDER is not None:  # a background warmup's lock (sandbox.cli.first_run)

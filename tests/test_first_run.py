@@ -122,3 +122,31 @@ def test_the_plain_python_note_ends_cleanly_without_a_background_warmup(monkeypa
     first_run.choose_engine_speed({"bodies": [{}] * 2}, 240)
     assert os.environ.pop("SANDBOX_JIT") == "0"
     assert notes == ["the engine is not compiled for this machine yet: this run is plain Python"]
+
+
+def test_the_warmup_shares_cover_every_family_once():
+    from sandbox.warmup import part, worlds
+
+    labels = [label for label, _, _ in worlds()]
+    for jobs in (1, 2, 3):
+        shares = [[label for label, _, _ in part(i, jobs)] for i in range(jobs)]
+        assert sorted(sum(shares, [])) == sorted(labels)
+        assert all(abs(len(a) - len(b)) <= 1 for a in shares for b in shares)
+
+
+def test_warmup_in_two_processes_reports_every_family_once_and_marks_warm(tmp_path):
+    # the cache the suite compiled: the second process's share and the pass after it load it
+    done = run(["warmup", "--jobs", "2"], {}, tmp_path)
+    assert done.returncode == 0, done.stderr
+    from sandbox.warmup import worlds
+
+    lines = done.stdout.splitlines()
+    for label, _, _ in worlds():
+        assert lines.count(f"  {label}: ready") == 1, label
+    assert lines[-1].startswith("done in ") and compile_cache.is_warm()
+
+
+def test_warmup_refuses_a_bad_share_in_one_line(tmp_path):
+    for bad in ("2/2", "x/2", "1"):
+        done = run(["warmup", "--part", bad], {}, tmp_path)
+        assert done.returncode == 2 and "--part" in done.stderr, bad
