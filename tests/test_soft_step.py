@@ -227,3 +227,22 @@ def test_one_call_soft_step_equals_the_staged_one():
     fast, staged = fast_and_staged(pile, 120)
     assert fast._fast and staged.timer.steps == 120
     assert same_state(fast, staged)
+
+
+def test_each_pass_visits_every_contact_once_moving_pairs_first():
+    # soft_order: a permutation of the step's contacts, those between moving bodies before
+    # those with a body that cannot move (the ground has the last word in each pass)
+    from sandbox.solvers.soft import soft_order
+
+    world = build_world(validate_scene(scenes.pyramid(10)))
+    world.settings.solver = "soft"
+    for _ in range(30):
+        world.step()
+    arrays = world.arrays()
+    ctx = arrays.context[0]
+    contacts, k = arrays.buffers.sets[ctx["contact_set"]], ctx["contacts"]
+    order = soft_order(contacts, k)
+    assert sorted(order) == list(range(k))
+    fixed = [contacts[i]["inv_mass_a"] == 0.0 or contacts[i]["inv_mass_b"] == 0.0 for i in order]
+    assert 0 < sum(fixed) < k and fixed == sorted(fixed)  # all the moving pairs, then the rest
+    assert list(order[: k - sum(fixed)]) != sorted(order[: k - sum(fixed)])  # interleaved
