@@ -136,13 +136,20 @@ def part(index: int, parts: int) -> list:
     return [family for q, family in enumerate(worlds()) if q % parts == index]
 
 
+def warm_families(families, report=print, told=frozenset()) -> None:
+    """Step each (label, world, staged) of ``families`` (compiling or loading its kernels) and
+    report it ready, unless its label is in ``told``."""
+    for label, world, staged in families:
+        step(world, staged=staged)
+        world.find_contacts()
+        if label not in told:
+            report(f"  {label}: ready")
+
+
 def warm_part(index: int, parts: int, report=print) -> None:
     """Compile (or load) share ``index`` of ``parts`` of the families; the first share also
     compiles the functions lessons call on their own (:func:`helpers`)."""
-    for label, world, staged in part(index, parts):
-        step(world, staged=staged)
-        world.find_contacts()
-        report(f"  {label}: ready")
+    warm_families(part(index, parts), report)
     if index == 0:
         helpers()
 
@@ -150,9 +157,11 @@ def warm_part(index: int, parts: int, report=print) -> None:
 def warm_up(report=print, jobs: int | None = None) -> float:
     """Compile (or load) every kernel; mark the cache warm. Returns the seconds it took.
     ``jobs``: processes to share the work between (default: 2 on a machine with two cores or
-    more, else 1; see the module)."""
+    more, else 1; always 1 without a cache to share, see the module)."""
     start = time.perf_counter()
     jobs = jobs or min(2, os.cpu_count() or 1)
+    if CACHE_FOLDER is None:  # nothing to share: each process would compile it all
+        jobs = 1
     others = [
         subprocess.Popen(
             [sys.executable, "-m", "sandbox", "warmup", "--quiet", "--part", f"{i}/{jobs}"],
@@ -165,12 +174,8 @@ def warm_up(report=print, jobs: int | None = None) -> float:
     warm_part(0, jobs, report)
     for process in others:
         process.wait()
-    done = {label for label, _, _ in part(0, jobs)}
-    for label, world, staged in worlds():  # the others' shares: loaded, or compiled if missed
-        step(world, staged=staged)
-        world.find_contacts()
-        if label not in done:
-            report(f"  {label}: ready")
+    # the others' shares: loaded from the cache, or compiled here if a share missed them
+    warm_families(worlds(), report, {label for label, _, _ in part(0, jobs)})
     helpers()
     mark_warm()
     if CACHE_FOLDER is not None:  # a background warmup's lock (sandbox.cli.first_run)
