@@ -115,7 +115,7 @@ def _compile_first() -> None:
 
     if os.environ.get("SANDBOX_JIT") == "0" or CACHE_FOLDER is None or is_warm():
         return
-    print("compiling the engine for this machine first, once (about a minute)", flush=True)
+    print("compiling the engine for this machine first, once (one to two minutes)", flush=True)
     subprocess.run([sys.executable, "-m", "sandbox", "warmup", "--quiet"], check=False)
 
 

@@ -10,7 +10,7 @@ from sandbox.fieldspec import Field
 JOBS = Field("jobs", "integer", "processes compiling at a time", None, "", lo=1, hi=64)
 
 EXAMPLES = """examples:
-  sandbox warmup            # once after installing, or after an upgrade: about a minute
+  sandbox warmup            # once after installing, or after an upgrade: one to two minutes
   sandbox warmup --jobs 1   # in one process (the default shares it between two cores)
 """
 
