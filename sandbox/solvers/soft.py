@@ -78,6 +78,13 @@ def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
 
 
 @njit
+def with_fixed(c) -> bool:
+    """Whether contact ``c`` is with a body that cannot move (the ground, or one held still by
+    :func:`hold_under_heavy_loads`): its 1/m in the record is 0."""
+    return c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0
+
+
+@njit
 def prepare_soft(contacts, k: int, bodies, context) -> None:
     """The soft step's additions to :func:`sandbox.solvers.common.prepare_contacts`: each
     point's base separation s0 - (r_b - r_a) . n, and each contact's softness (twice the
@@ -92,8 +99,7 @@ def prepare_soft(contacts, k: int, bodies, context) -> None:
     moving, static = softness(hertz, zeta, h), softness(STATIC_STIFFNESS * hertz, zeta, h)
     for i in range(k):
         c = contacts[i]
-        fixed = c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0  # the ground, or held
-        rate, mass_scale, impulse_scale = static if fixed else moving
+        rate, mass_scale, impulse_scale = static if with_fixed(c) else moving
         c["soft_bias_rate"], c["soft_mass_scale"] = rate, mass_scale
         c["soft_impulse_scale"] = impulse_scale
         nx, ny = c["normal"][0], c["normal"][1]
@@ -247,8 +253,7 @@ def soft_order(contacts, k: int):
     for fixed in (False, True):
         end = start
         for i in range(k):
-            c = contacts[i]
-            if (c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0) == fixed:
+            if with_fixed(contacts[i]) == fixed:
                 order[end] = i
                 end += 1
         group = order[start:end].copy()
