@@ -146,12 +146,15 @@ def warm_families(families, report=print, told=frozenset()) -> None:
             report(f"  {label}: ready")
 
 
-def warm_part(index: int, parts: int, report=print) -> None:
+def warm_part(index: int, parts: int, report=print) -> set[str]:
     """Compile (or load) share ``index`` of ``parts`` of the families; the first share also
-    compiles the functions lessons call on their own (:func:`helpers`)."""
-    warm_families(part(index, parts), report)
+    compiles the functions lessons call on their own (:func:`helpers`). Returns the labels of
+    the families it stepped."""
+    share = part(index, parts)
+    warm_families(share, report)
     if index == 0:
         helpers()
+    return {label for label, _, _ in share}
 
 
 def warm_up(report=print, jobs: int | None = None) -> float:
@@ -171,11 +174,11 @@ def warm_up(report=print, jobs: int | None = None) -> float:
         )
         for i in range(1, jobs)
     ]
-    warm_part(0, jobs, report)
+    done = warm_part(0, jobs, report)
     for process in others:
         process.wait()
     # the others' shares: loaded from the cache, or compiled here if a share missed them
-    warm_families(worlds(), report, {label for label, _, _ in part(0, jobs)})
+    warm_families(worlds(), report, done)
     helpers()
     mark_warm()
     if CACHE_FOLDER is not None:  # a background warmup's lock (sandbox.cli.first_run)
