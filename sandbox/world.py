@@ -22,7 +22,7 @@ from sandbox.energy_growth import energy_limit
 from sandbox.errors import SimulationError
 from sandbox.forces import ForceGenerator
 from sandbox.integrators import has_fields, work_arrays
-from sandbox.jit import entry
+from sandbox.jit import bound
 from sandbox.projectile import advance_analytic
 from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SLEEPING
 from sandbox.settings import Settings
@@ -340,11 +340,11 @@ class World(Building, Measures):
         kernel = step_kernel(len(g), len(self.joint_table), s.solver)
         if fast and kernel == "free_step":
             args = (*model, self.context, self._work)
-            self._run = _bind(entry(free_step, *args), *args)
+            self._run = bound(free_step, *args)
         elif fast:
             args = (*model, b.sets, b.proxies, b.pairs, self.context, self._work)
             one_call = soft_step if kernel == "soft_step" else fast_step
-            self._run = _bind(entry(one_call, *args), *args)
+            self._run = bound(one_call, *args)
         else:
             self._run = lambda: staged_step(self, self.timer)
 
@@ -407,8 +407,3 @@ class World(Building, Measures):
 
     def __repr__(self) -> str:
         return f"World({self.name!r}, {len(self.bodies)} bodies, t={self.time:.4f})"
-
-
-def _bind(function, *args):
-    """``function`` with ``args`` bound: a call with no arguments of its own."""
-    return lambda: function(*args)

@@ -1,12 +1,14 @@
 """How the engine runs a command on a machine where it was never compiled.
 
-Compiling every kernel takes about half a minute the first time (numba caches the machine code
-for later runs). For a small scene, running the same functions uncompiled (plain Python,
-``SANDBOX_JIT=0``) finishes long before that: drop's 240 steps take 0.3 s and the pyramid's
-120 steps 18 s, where compiling takes 30 to 40 s. So when the compile cache is not warm (``sandbox warmup`` has not run) and the
-scene is small, the command runs uncompiled, says so in one line, and starts ``sandbox warmup``
-in the background (at a low priority, one at a time) so that the next runs are compiled. A
-larger scene compiles in the foreground, with a notice and a progress bar on a terminal.
+Compiling the kernels a scene needs takes 40 to 50 s the first time (every kernel, ``sandbox
+warmup``, one to two minutes; numba caches the machine code for later runs). For a small scene,
+running the same functions uncompiled (plain Python, ``SANDBOX_JIT=0``, on the record view of
+:mod:`sandbox.plain_records`) finishes long before that: drop's 240 steps take 0.4 s and the
+pyramid's 120 steps 8 s. So when the compile cache is not warm (``sandbox warmup`` has not run)
+and the scene is small, the command runs uncompiled, says so in one line, and starts ``sandbox
+warmup`` in the background (at a low priority, one at a time) so that the next runs are
+compiled. A larger scene compiles in the foreground, with a notice and a progress bar on a
+terminal.
 
 ``SANDBOX_JIT=0`` or ``1`` set by the user decides alone; ``SANDBOX_WARMUP=off`` keeps the
 background warmup from starting.
@@ -21,11 +23,12 @@ import time
 
 from sandbox.cli.common import note
 
-# bodies x steps below which an uncompiled run is done sooner than compiling. Measured on the
-# project's 2-core machine from an installed wheel: the bundled pyramid (56 boxes, 120 steps,
-# 6,720 body-steps) takes 18 s of CPU uncompiled (2.7 ms per body and step) against 41 s to
-# compile and run; drop (2 bodies, 240 steps) 0.3 s against the same compile
-PLAIN_BODY_STEPS = 10_000
+# bodies x steps up to which an uncompiled run is done sooner than compiling. Measured on the
+# project's 2-core machine: the bundled pyramid (56 boxes) takes 8 s uncompiled for 120 steps
+# and 10 s for 240 (0.7 to 1.2 ms per body and step) against 50 s to compile and run; drop (2
+# bodies, 240 steps) 0.4 s against the same compile. At the bound, an uncompiled run takes
+# about 20 s, still well under the compile
+PLAIN_BODY_STEPS = 20_000
 LOCK = "warming"  # file in the cache folder while a background warmup runs
 STALE = 600.0  # s: a lock older than this is from a warmup that died
 
@@ -44,7 +47,7 @@ def choose_engine_speed(spec: dict, steps: int) -> None:
         later = "; it compiles in the background for the next runs" if started else ""
         note(f"the engine is not compiled for this machine yet: this run is plain Python{later}")
     elif not has_kernel(scene_kernel(spec)):
-        note("compiling the engine for this machine, once: about half a minute; later runs load it")
+        note("compiling the engine for this machine, once: about a minute; later runs load it")
 
 
 def scene_kernel(spec: dict) -> str:
