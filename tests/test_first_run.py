@@ -9,6 +9,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
 from sandbox import compile_cache
 from sandbox.cli import first_run
@@ -52,14 +53,14 @@ def test_a_large_scene_compiles_and_says_so(monkeypatch):
     monkeypatch.setattr(first_run, "engine_imported", lambda: False)  # a fresh command
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
     monkeypatch.setattr(compile_cache, "has_kernel", lambda name: False)
-    first_run.choose_engine_speed({"bodies": [{}] * 210}, 120)  # pyramid 20: 25,200
+    first_run.choose_engine_speed({"bodies": [{}] * 210}, 240)  # pyramid 20: 50,400
     assert "SANDBOX_JIT" not in os.environ
     assert notes and "compiling the engine" in notes[0]
 
 
 def test_a_large_scene_whose_step_is_cached_says_nothing(tmp_path, monkeypatch):
     # an earlier run compiled the pyramid's step (its index file is in the cache) but no
-    # warmup finished: the next run loads it, without the "about half a minute" note; a soft
+    # warmup finished: the next run loads it, without the "about a minute" note; a soft
     # scene needs the soft step, which is not there, and gets the note
     notes = []
     monkeypatch.setattr(first_run, "note", notes.append)
@@ -69,10 +70,10 @@ def test_a_large_scene_whose_step_is_cached_says_nothing(tmp_path, monkeypatch):
     (tmp_path / "sandbox_0123").mkdir()
     (tmp_path / "sandbox_0123" / "step.fast_step-216.py311.nbi").write_bytes(b"")
     box = {"shapes": [{"type": "box"}]}
-    first_run.choose_engine_speed({"bodies": [box] * 210, "settings": {"solver": "iterative"}}, 120)
+    first_run.choose_engine_speed({"bodies": [box] * 210, "settings": {"solver": "iterative"}}, 240)
     assert notes == [] and "SANDBOX_JIT" not in os.environ
     soft = {"bodies": [box] * 210, "settings": {"solver": "soft"}}
-    first_run.choose_engine_speed(soft, 120)
+    first_run.choose_engine_speed(soft, 240)
     assert len(notes) == 1 and "compiling the engine" in notes[0]
 
 
@@ -150,3 +151,20 @@ def test_warmup_refuses_a_bad_share_in_one_line(tmp_path):
     for bad in ("2/2", "x/2", "1"):
         done = run(["warmup", "--part", bad], {}, tmp_path)
         assert done.returncode == 2 and "--part" in done.stderr, bad
+
+
+@pytest.mark.parametrize(("bodies", "steps", "plain"), [(103, 300, True), (134, 300, False)])
+def test_every_bundled_scene_at_the_default_steps_runs_uncompiled(
+    monkeypatch, bodies, steps, plain
+):
+    # the largest bundled scene (rain: 103 bodies) at the default 300 steps is 30,900
+    # body-steps, uncompiled in about 10 s against about 50 s to compile; 134 x 300 = 40,200 is
+    # past the bound (PLAIN_BODY_STEPS) and compiles
+    monkeypatch.setattr(first_run, "note", lambda text: None)
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setenv("SANDBOX_WARMUP", "off")
+    monkeypatch.setattr(first_run, "engine_imported", lambda: False)
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
+    monkeypatch.setattr(compile_cache, "has_kernel", lambda name: False)
+    first_run.choose_engine_speed({"bodies": [{}] * bodies}, steps)
+    assert (os.environ.pop("SANDBOX_JIT", None) == "0") is plain

@@ -4,7 +4,7 @@ Compiling the kernels a scene needs takes 40 to 50 s the first time (every kerne
 warmup``, one to two minutes; numba caches the machine code for later runs). For a small scene,
 running the same functions uncompiled (plain Python, ``SANDBOX_JIT=0``, on the record view of
 :mod:`sandbox.plain_records`) finishes long before that: drop's 240 steps take 0.4 s and the
-pyramid's 120 steps 8 s. So when the compile cache is not warm (``sandbox warmup`` has not run)
+pyramid's 120 steps 5 to 8 s. So when the compile cache is not warm (``sandbox warmup`` has not run)
 and the scene is small, the command runs uncompiled, says so in one line, and starts ``sandbox
 warmup`` in the background (at a low priority, one at a time) so that the next runs are
 compiled. A larger scene compiles in the foreground, with a notice and a progress bar on a
@@ -24,11 +24,12 @@ import time
 from sandbox.cli.common import note
 
 # bodies x steps up to which an uncompiled run is done sooner than compiling. Measured on the
-# project's 2-core machine: the bundled pyramid (56 boxes) takes 8 s uncompiled for 120 steps
-# and 10 s for 240 (0.7 to 1.2 ms per body and step) against 50 s to compile and run; drop (2
-# bodies, 240 steps) 0.4 s against the same compile. At the bound, an uncompiled run takes
-# about 20 s, still well under the compile
-PLAIN_BODY_STEPS = 20_000
+# project's 2-core machine: uncompiled, the bundled pyramid (56 boxes) takes 5 to 8 s for 120
+# steps and 13 s for 300 (0.8 ms per body and step), rain (103 circles) 10 s for 300 (0.3 ms),
+# drop (2 bodies) 0.4 s for 240; compiling and running takes 50 to 54 s. At the bound, boxes
+# take about 30 s uncompiled, still well under the compile; every bundled scene at the default
+# 300 steps runs uncompiled
+PLAIN_BODY_STEPS = 40_000
 LOCK = "warming"  # file in the cache folder while a background warmup runs
 STALE = 600.0  # s: a lock older than this is from a warmup that died
 
