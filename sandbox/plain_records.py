@@ -76,8 +76,17 @@ class Record:
         self._views[name][self._index] = value
 
     def __repr__(self) -> str:
-        fields = ", ".join(f"{name}={self[name]!r}" for name in self._views)
+        fields = ", ".join(f"{name}={shown(self[name])}" for name in self._views)
         return f"Record({fields})"
+
+
+def shown(value) -> str:
+    """A field's value as a debugger shows it: numbers and vectors as numbers, records by count."""
+    if isinstance(value, memoryview):
+        return repr(value.tolist())
+    if isinstance(value, Records):
+        return f"<{len(value)} records>"
+    return repr(value)
 
 
 def fast_records(value):

@@ -121,3 +121,11 @@ def test_uncompiled_steps_are_bit_identical_through_the_record_view():
     assert fast == numpy_records
     start = np.zeros(2)
     assert fast["soft"][0] != start.tobytes().hex()  # sanity: the bodies moved
+
+
+def test_a_record_prints_with_its_fields():
+    fast = fast_records(filled_contacts())
+    text = repr(fast[1])
+    assert text.startswith("Record(a=3, b=0, count=2, normal=[")
+    assert "points=<2 records>" in text and "use_block=False" in text
+    assert repr(fast[1]["points"][0]).startswith("Record(rn_a=0.0")
