@@ -111,6 +111,7 @@ CONTACT_POINT = np.dtype(
         ("local_b", V2),  # likewise in b's
         ("approach_speed", F8),  # v_r . n when the step began, before gravity (m/s)
         ("base_separation", F8),  # soft step: -depth - (r_b - r_a) . n, for the separation now
+        ("separation", F8),  # soft step: the separation at the bodies' latest poses (m)
         ("bounce_impulse", F8),  # what the passes after the sweeps added (N s), not warm-started
     ],
     align=True,

@@ -110,6 +110,7 @@ def prepare_soft(contacts, k: int, bodies, context) -> None:
             dx = (p["point"][0] - com_b[0]) - (p["point"][0] - com_a[0])
             dy = (p["point"][1] - com_b[1]) - (p["point"][1] - com_a[1])
             p["base_separation"] = -p["depth"] - (dx * nx + dy * ny)
+            p["separation"] = separation_now(c, p, bodies)  # what the first solve pass needs
 
 
 @njit
@@ -215,7 +216,11 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
     for j in range(c["count"]):
         p = c["points"][j]
-        s = separation_now(c, p, bodies)
+        if use_bias:  # the bodies have not moved since the last pass measured s
+            s = p["separation"]
+        else:  # the relax pass comes right after the move: measure s again
+            s = separation_now(c, p, bodies)
+            p["separation"] = s
         bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
         if s > 0.0:
             bias = s * inv_h  # speculative: the gap may close within this substep
@@ -267,7 +272,11 @@ def soft_order(contacts, k: int):
 @njit
 def solve_soft(contacts, order, bodies, context, use_bias: bool) -> None:
     """One pass over the contacts in ``order`` (:func:`soft_order`): with the soft bias
-    (solve) or without (relax)."""
+    (solve) or without (relax). The relax pass follows the bodies' move and measures each
+    point's separation at their new poses (:func:`separation_now`); the solve pass follows a
+    pass that did (the last substep's relax, or :func:`prepare_soft` for the first) with only
+    velocities changed in between, so it reads the separation stored then: the same number,
+    measured once instead of twice."""
     ctx = context[0]
     inv_h = ctx["substeps"] / ctx["dt"]
     push = (ctx["max_push_speed"], ctx["deep_overlap"])
