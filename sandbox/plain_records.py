@@ -14,6 +14,8 @@ Nothing else changes: slices, field names and numpy functions work as on any arr
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 
@@ -97,3 +99,23 @@ def fast_records(value):
     if isinstance(value, tuple | list):
         return type(value)(fast_records(v) for v in value)
     return value
+
+
+def staged_view(world, arrays):
+    """The staged step's ``arrays`` (a ``WorldArrays``) with the record arrays in them, and in
+    its contact buffers, viewed as :class:`Records`; made once and kept on ``world`` while the
+    arrays stay the same objects (a world makes new ones when bodies, shapes or the buffers'
+    size change)."""
+    buffers = arrays.buffers
+    originals = (*arrays[:6], arrays.context, arrays.work, buffers.sets, buffers.proxies)
+    kept = getattr(world, "_staged_view", None)
+    if kept is None or any(a is not b for a, b in zip(kept[0], originals, strict=True)):
+        view = SimpleNamespace(
+            sets=fast_records(buffers.sets), proxies=fast_records(buffers.proxies), pairs=None
+        )
+        fields = ("bodies", "rot", "shapes", "vertices", "joints", "generators", "context", "work")
+        viewed = arrays._replace(**{f: fast_records(getattr(arrays, f)) for f in fields})
+        kept = world._staged_view = (originals, viewed._replace(buffers=view))
+    view = kept[1]
+    view.buffers.pairs = buffers.pairs  # an int array: as it is (replaced when it grows)
+    return view

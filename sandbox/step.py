@@ -47,7 +47,7 @@ from sandbox.integrators import (
     move_bodies,
     plan_motion,
 )
-from sandbox.jit import njit
+from sandbox.jit import JIT_ENABLED, njit
 from sandbox.joints.solve import (
     prepare_joints,
     prepare_joints_soft,
@@ -58,6 +58,7 @@ from sandbox.joints.solve import (
 )
 from sandbox.narrowphase import collide_into
 from sandbox.penetration import fix_positions
+from sandbox.plain_records import staged_view
 from sandbox.sleep import fall_asleep, moving_kinematic, wake_touched
 from sandbox.solvers import SOLVERS, iterative
 from sandbox.solvers.common import (
@@ -385,6 +386,8 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     """One step, stage by stage (any settings). Returns 0, minus the pair rows needed, or 1
     plus the index of a body whose state stopped being finite."""
     a = world.arrays()
+    if not JIT_ENABLED:  # uncompiled: the records through their fast view (sandbox.jit.bound)
+        a = staged_view(world, a)
     ctx = a.context[0]
     clock = timer if timer is not None else _NoTimer()
     clock.start()

@@ -74,7 +74,7 @@ def test_the_rest_is_an_ordinary_array():
     assert isinstance(pair[2], list) and isinstance(pair[2][0], Records)
 
 
-# a box pyramid and a ball on a pin chain (contacts and joints), iterative and soft, stepped
+# a box pyramid and a ball on a pin chain (contacts and joints), iterative, soft and shock, stepped
 # uncompiled: once through the record view (the engine's way) and once on numpy's own records
 SCRIPT = """
 import json, sys
@@ -87,7 +87,7 @@ if sys.argv[1] == "numpy":
     sandbox.plain_records.fast_records = lambda value: value
 
 out = {}
-for solver in ("iterative", "soft"):
+for solver in ("iterative", "soft", "shock"):  # shock: the staged path
     w = World(gravity=(0, -9.81), solver=solver)
     w.add_body(Body("g", type="static", position=(0, -0.5))).add_shape(Box(10, 1, friction=0.6))
     for row in range(3):
