@@ -112,8 +112,8 @@ def build_box2d(spec: dict) -> Stepper:
 
 SOFT_SUBSTEPS = 4
 
-# This engine's columns, in table order. Sleeping islands (issue 14) get their column here, one
-# line: sandbox_engine("sleep", {"sleep": True}, contacts_only=True).
+# This engine's columns, in table order. Sleeping islands would get their column here, one
+# line: sandbox_engine("sleep", {"sleep": True}, contacts_only=True) (bench_sleep.py measures them).
 SANDBOX_ENGINES = [
     sandbox_engine("iterative", {"solver": "iterative"}),
     sandbox_engine("soft", {"solver": "soft", "substeps": SOFT_SUBSTEPS}, contacts_only=True),
