@@ -6,10 +6,14 @@ with a *void scalar*, and every field read or write on one builds a temporary ar
 tens of times per contact and sweep, so an uncompiled step spends most of its time there.
 
 :func:`fast_records` gives the same memory a view whose elements are :class:`Record`: ``r[name]``
-indexes the array of that field, one per field, made once per array. Values, types and
-writes are exactly numpy's (a field read gives the same ``numpy.float64``; a sub-array field
-is a writable view), so an uncompiled step gives bit for bit the same numbers, only sooner.
-Nothing else changes: slices, field names and numpy functions work as on any array.
+indexes the container of that field, one per field, made once per array. A number reads as a
+Python ``float`` (or ``int``, ``bool``) of exactly numpy's value, and Python's arithmetic on it
+is the same IEEE double arithmetic as numpy's, so an uncompiled step gives bit for bit the same
+numbers (``tests/test_plain_records.py``), only sooner; a vector field (a point, a velocity)
+reads as a writable view of its numbers. Slices, field names and numpy functions work on the
+array as on any other. Two things behave as in compiled code rather than as numpy's scalars
+would: a division by zero raises ``ZeroDivisionError`` (numba's default), and a float written
+to an integer field is refused (``TypeError``) instead of being cut to an integer.
 """
 
 from __future__ import annotations

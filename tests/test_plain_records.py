@@ -129,3 +129,14 @@ def test_a_record_prints_with_its_fields():
     assert text.startswith("Record(a=3, b=0, count=2, normal=[")
     assert "points=<2 records>" in text and "use_block=False" in text
     assert repr(fast[1]["points"][0]).startswith("Record(rn_a=0.0")
+
+
+def test_it_refuses_what_compiled_code_refuses():
+    # a division by zero raises, as numba's default error model does (numpy's scalars would
+    # give inf with a warning); a float is not cut to fit an integer field
+    c = fast_records(np.zeros(1, dtype=CONTACT))[0]
+    with pytest.raises(ZeroDivisionError):
+        1.0 / c["friction"]
+    with pytest.raises(TypeError):
+        c["count"] = 1.5
+    assert type(c["friction"]) is float and type(c["count"]) is int
