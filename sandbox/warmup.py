@@ -136,14 +136,13 @@ def part(index: int, parts: int) -> list:
     return [family for q, family in enumerate(worlds()) if q % parts == index]
 
 
-def warm_families(families, report=print, told=frozenset()) -> None:
+def warm_families(families, report=print) -> None:
     """Step each (label, world, staged) of ``families`` (compiling or loading its kernels) and
-    report it ready, unless its label is in ``told``."""
+    report it ready."""
     for label, world, staged in families:
         step(world, staged=staged)
         world.find_contacts()
-        if label not in told:
-            report(f"  {label}: ready")
+        report(f"  {label}: ready")
 
 
 def warm_part(index: int, parts: int, report=print) -> set[str]:
@@ -174,12 +173,11 @@ def warm_up(report=print, jobs: int | None = None) -> float:
         )
         for i in range(1, jobs)
     ]
-    done = warm_part(0, jobs, report)
+    done = warm_part(0, jobs, report)  # with the helpers lessons call on their own
     for process in others:
         process.wait()
-    # the others' shares: loaded from the cache, or compiled here if a share missed them
-    warm_families(worlds(), report, done)
-    helpers()
+    if jobs > 1:  # the others' shares: loaded from the cache, or compiled here if one missed them
+        warm_families([family for family in worlds() if family[0] not in done], report)
     mark_warm()
     if CACHE_FOLDER is not None:  # a background warmup's lock (sandbox.cli.first_run)
         (CACHE_FOLDER / "warming").unlink(missing_ok=True)
