@@ -75,7 +75,7 @@ from sandbox.solvers.soft import (
     softness,
     solve_soft,
 )
-from sandbox.toi import limit_ccd_motion
+from sandbox.toi import hold_stopped, limit_ccd_motion
 
 STAGES = (
     "find_pairs",
@@ -262,6 +262,7 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work) -> Non
     joint_soft = softness(ctx["joint_hertz"], ctx["joint_damping_ratio"], h)
     plan = soft_joint_plan(joints, bodies, context)
     order = soft_order(contacts, k)
+    stopped = np.zeros(bodies.shape[0] if ccd else 0, dtype=np.bool_)
     for _ in range(ctx["substeps"]):
         integrate_velocities(model, context, h, work)
         warm_start_joints_soft(joints, bodies)
@@ -270,8 +271,9 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work) -> Non
         solve_joints_soft_pass(joints, bodies, joint_soft, True, 1.0 / h, plan)
         solve_soft(contacts, order, bodies, context, True)
         plan_motion(bodies, h)
-        if ccd:
-            limit_ccd_motion(bodies, shapes, vertices, context)
+        if ccd:  # no narrowphase between substeps: what it found before them
+            frac = limit_ccd_motion(bodies, shapes, vertices, context, (contacts, k, joints))
+            hold_stopped(bodies, frac, stopped)
         move_bodies(bodies, rot, context)
         solve_joints_soft_pass(joints, bodies, joint_soft, False, 1.0 / h, plan)
         solve_soft(contacts, order, bodies, context, False)

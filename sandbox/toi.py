@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from sandbox.jit import njit
+from sandbox.narrowphase import joined
 from sandbox.records import CIRCLE, POLYGON
 
 LINEAR_SLOP = 0.005  # m
@@ -299,14 +300,22 @@ def swept_pairs(bodies, shapes):
 
 
 @njit
-def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance):
+def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance, found=None):
     """For every body, the fraction of this step's motion (``motion``, ``motion_turn``) it may
     take: the earliest time of impact over the ``pairs`` ((k, 2) shape indices) that involve a
     body with ``ccd`` set, 1.0 for other bodies and when nothing is hit.
 
     Pairs already within ``target_separation + tolerance`` at the start are left to the
     discrete narrowphase (its contact margin should be at least that), so a body resting on
-    the ground is never frozen.
+    the ground is never frozen; but the ccd shape's core (:func:`core_of`) must not come that
+    close either (as Box2D v3): the narrowphase's points are the features touching at the
+    start, and a long box struck at one corner at speed spins its other corner through the
+    ground. ``found`` = (contacts, k, joints), from a substep of the soft step: the
+    narrowphase ran once, before the substeps, so such a pair is left to the solver only when
+    it has a contact among the first ``k`` or its bodies share a joint; otherwise (stopped at
+    its impact by an earlier substep) its ccd body stays where it is (t = 0) until the next
+    step's narrowphase finds the contact; so does one whose core began within reach (deep in
+    the other shape: the position stage takes it out after the substeps).
     """
     frac = np.ones(bodies.shape[0])
     for q in range(pairs.shape[0]):
@@ -314,16 +323,21 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance)
         bi, bj = shapes[i]["body"], shapes[j]["body"]
         if bi == bj or not (bodies[bi]["ccd"] or bodies[bj]["ccd"]):
             continue
-        t = time_of_impact(
-            shape_of(shapes[i], vertices),
-            body_motion(bodies[bi]),
-            shape_of(shapes[j], vertices),
-            body_motion(bodies[bj]),
-            target_separation,
-            tolerance,
-        )
-        if t <= 0.0:  # already in contact: the narrowphase handles it
-            continue
+        shape_i, shape_j = shape_of(shapes[i], vertices), shape_of(shapes[j], vertices)
+        motion_i, motion_j = body_motion(bodies[bi]), body_motion(bodies[bj])
+        limits = (target_separation, tolerance)
+        t = time_of_impact(shape_i, motion_i, shape_j, motion_j, *limits)
+        if t <= 0.0:  # already in contact: the narrowphase handles it, up to the cores
+            t = 1.0
+            if bodies[bi]["ccd"]:
+                t = core_impact(core_of(shape_i), motion_i, shape_j, motion_j, limits, t)
+            if bodies[bj]["ccd"]:
+                t = core_impact(core_of(shape_j), motion_j, shape_i, motion_i, limits, t)
+            if found is None:  # the step's own narrowphase found these shapes touching
+                if t <= 0.0:
+                    continue  # a core already that close: deep overlap, the position stage's
+            elif not left_to_solver(found, bodies.shape[0], i, j, bi, bj):
+                t = 0.0
         for b in (bi, bj):
             if bodies[b]["ccd"] and t < frac[b]:
                 frac[b] = t
@@ -331,20 +345,75 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance)
 
 
 @njit
-def limit_ccd_motion(bodies, shapes, vertices, context) -> None:
+def core_of(shape):
+    """A shape's core: a circle about its centre (its centroid) of a quarter of its smallest
+    extent (the radius, or the distance from the centroid to the nearest edge)."""
+    kind, radius, center, verts = shape
+    extent = radius
+    if kind == POLYGON:
+        n = verts.shape[0]
+        extent = np.inf
+        for v in range(n):
+            ax, ay = verts[v, 0] - center[0], verts[v, 1] - center[1]
+            ex, ey = verts[(v + 1) % n, 0] - verts[v, 0], verts[(v + 1) % n, 1] - verts[v, 1]
+            length = math.sqrt(ex * ex + ey * ey)
+            if length > 0.0:
+                extent = min(extent, abs(ax * ey - ay * ex) / length)
+    return CIRCLE, 0.25 * extent, center.copy(), np.empty((0, 2))
+
+
+@njit
+def core_impact(core, motion, other, other_motion, limits, t: float) -> float:
+    """The earlier of ``t`` and the time the ``core`` comes within ``limits`` = (target,
+    tolerance) of ``other``: 0.0 when it already is (the shapes overlap deeply)."""
+    return min(t, time_of_impact(core, motion, other, other_motion, limits[0], limits[1]))
+
+
+@njit
+def left_to_solver(found, n_bodies: int, i: int, j: int, bi: int, bj: int) -> bool:
+    """Whether shapes i and j (of bodies bi, bj) have a contact among ``found`` = (contacts,
+    k, joints), or their bodies share a joint (joined bodies do not collide)."""
+    contacts, k, joints = found
+    if joints.shape[0] > 0 and joined(joints, n_bodies, bi, bj):
+        return True
+    for q in range(k):
+        sa, sb = contacts[q]["shape_a"], contacts[q]["shape_b"]
+        if (sa == i and sb == j) or (sa == j and sb == i):
+            return True
+    return False
+
+
+@njit
+def limit_ccd_motion(bodies, shapes, vertices, context, found=None):
     """Conservative advancement for the ``ccd`` bodies: each moves only up to its time of
     impact, a quarter of the contact margin short of touching (``motion`` and ``motion_turn``
     scaled in place); the next step's narrowphase then finds the contact (retroactive detection
-    takes over)."""
+    takes over). ``found``: in a substep of the soft step, this step's (contacts, k, joints)
+    (see :func:`ccd_fractions`). Returns each body's fraction."""
     ctx = context[0]
     margin = ctx["contact_margin"]
     target = 0.25 * margin if margin > 0.0 else LINEAR_SLOP
     pairs = swept_pairs(bodies, shapes)
     if pairs.shape[0] == 0:
-        return
-    frac = ccd_fractions(bodies, shapes, vertices, pairs, target, 0.25 * target)
+        return np.ones(bodies.shape[0])
+    frac = ccd_fractions(bodies, shapes, vertices, pairs, target, 0.25 * target, found)
     for i in range(bodies.shape[0]):
         b = bodies[i]
         b["motion"][0] *= frac[i]
         b["motion"][1] *= frac[i]
         b["motion_turn"] *= frac[i]
+    return frac
+
+
+@njit
+def hold_stopped(bodies, frac, stopped) -> None:
+    """In the soft step's substeps: a body stopped at an impact (``frac`` < 1) stays where
+    it stopped for the rest of the step (``stopped``, one flag per body, kept across the
+    substeps), as the rigid step moves it only once: no narrowphase runs between substeps to
+    find the contact it stopped short of."""
+    for i in range(bodies.shape[0]):
+        if stopped[i]:
+            b = bodies[i]
+            b["motion"][0] = b["motion"][1] = b["motion_turn"] = 0.0
+        elif frac[i] < 1.0:
+            stopped[i] = True

@@ -133,8 +133,8 @@ def test_spinning_box_is_conservative():
 
 def test_ccd_fractions_and_limit_motion():
     # body 0: static thin wall at x = 0; body 1: ccd bullet r = 0.05 from x = -1 at 200 m/s;
-    # body 2: a ball resting on the wall's top (touching at t = 0) moving down into it;
-    # body 3: a slow ball far away
+    # body 2: a ball r = 0.1 resting on the wall's top (touching at t = 0) moving a whole
+    # radius down into it; body 3: a slow ball far away
     from sandbox import Body, Box, Circle, World
 
     world = World(contact_margin=0.02)  # target separation 0.005, tolerance 0.00125
@@ -151,10 +151,42 @@ def test_ccd_fractions_and_limit_motion():
     frac = ccd_fractions(bodies, g.table, g.vertices, pairs, 0.005, 0.00125)
     # bullet: stops 0.005 short of the wall, gap (0.94 - 0.005) over 3.333 m of motion
     assert abs(frac[1] - (0.94 - 0.005) / (200.0 * DT)) < 0.00125 / (200.0 * DT) + 1e-12
-    assert frac[0] == 1.0 and frac[2] == 1.0 and frac[3] == 1.0  # resting ball is not frozen
+    assert frac[0] == 1.0 and frac[3] == 1.0
+    # the resting ball's touching surface is the narrowphase's, but its core (a circle of a
+    # quarter of its radius, 0.025 m) must stay 0.005 m off the wall's top at y = 1: its
+    # centre goes down to 1.03 at the lowest, 0.07 of the 0.1 m, a fraction of 0.7
+    assert abs(frac[2] - 0.7) <= 0.00125 / 0.1 + 1e-12
 
     limit_ccd_motion(bodies, g.table, g.vertices, world.context)
     step = bodies["motion"]
-    np.testing.assert_allclose(step[[0, 2, 3]], dp[[0, 2, 3]], atol=0)
+    np.testing.assert_allclose(step[[0, 3]], dp[[0, 3]], atol=0)
+    np.testing.assert_allclose(step[2], frac[2] * dp[2], atol=0)
     gap = -0.01 - (-1.0 + step[1, 0] + 0.05)  # wall face x = -0.01, bullet front x + 0.05
     assert 0.005 <= gap < 0.00625 + 1e-12
+
+
+@pytest.mark.parametrize("solver", ["iterative", "soft"])
+def test_ccd_leaves_resting_stacks_exactly_as_they_are_without(solver):
+    # a column of 8 boxes and a row of discs, touching the ground and each other at rest:
+    # every surface is in touch from the start (the narrowphase's), no core comes near
+    # another shape, so ccd on every body stops nothing, and the run is the same bit for bit
+    # as without ccd
+    from sandbox import Body, Box, Circle, World
+
+    def stacks(ccd: bool) -> World:
+        w = World(gravity=(0, -9.81), solver=solver)
+        w.add_body(Body("ground", type="static", position=(0, -0.5))).add_shape(Box(20, 1))
+        for i in range(8):
+            b = w.add_body(Body(f"box{i}", position=(0.0, 0.2 + 0.4 * i), ccd=ccd))
+            b.add_shape(Box(0.6, 0.4))
+        for i in range(5):
+            b = w.add_body(Body(f"disc{i}", position=(2.0 + 0.5 * i, 0.25), ccd=ccd))
+            b.add_shape(Circle(0.25))
+        return w
+
+    plain, caught = stacks(False), stacks(True)
+    for _ in range(240):
+        plain.step()
+        caught.step()
+    assert np.array_equal(plain.com, caught.com) and np.array_equal(plain.vel, caught.vel)
+    assert abs(caught.body("box7").position[1] - 3.0) < 0.05  # the column stands
