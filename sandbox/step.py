@@ -289,9 +289,7 @@ def begin_soft(contacts, k: int, previous, model, context) -> None:
     prepare(contacts, k, previous, bodies, context, False)
     ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
-        hold_under_heavy_loads(
-            contacts, k, bodies, ctx["gravity"], ctx["hold_ratio"], ctx["touch_margin"]
-        )
+        hold_under_heavy_loads(contacts, k, bodies, context)
     prepare_soft(contacts, k, bodies, context)
     gather_forces(bodies)
     prepare_joints_soft(joints, bodies, context)
