@@ -15,13 +15,14 @@ from sandbox.cli import main
 from sandbox.energy_growth import GROWTH, energy_limit
 
 
-def spring_world(stiffness: float, mass: float = 1.0, **settings) -> World:
-    """A disc of ``mass`` kg hung 1 m below a static anchor on a spring of rest length 0.5 m."""
+def spring_world(stiffness: float, mass: float = 1.0, damping: float = 0.0, **settings) -> World:
+    """A disc of ``mass`` kg hung 1 m below a static anchor on a spring of rest length 0.5 m
+    (``damping`` N s/m)."""
     w = World(gravity=(0, -9.81), **settings)
     hook = w.add_body(Body("hook", type="static", position=(0, 0)))
     bob = w.add_body(Body("bob", position=(0, -1)))
     bob.add_shape(Circle(0.1, mass=mass))
-    w.add_joint(SpringJoint(hook, bob, rest_length=0.5, stiffness=stiffness))
+    w.add_joint(SpringJoint(hook, bob, rest_length=0.5, stiffness=stiffness, damping=damping))
     return w
 
 
@@ -41,6 +42,24 @@ def test_a_too_stiff_spring_is_caught_while_the_numbers_are_finite(integrator):
     assert info.value.body == "bob"
     assert info.value.step < 40
     assert "spring stiffness too high for dt" in info.value.cause
+    assert finite_state(w)
+
+
+def test_a_too_damped_spring_is_named_with_its_step_limit():
+    # k = 10 N/m and c = 200 N s/m on 1 kg at dt = 1/60: k dt^2 / m + 2 c dt / m = 6.7 > 4,
+    # unstable although the stiffness alone would allow dt < 2 sqrt(1 / 10) = 0.63 s. The
+    # limit 4 / (c/m + sqrt((c/m)^2 + 4 k/m)) = 0.009998 s is named, with the damping
+    w = spring_world(10.0, damping=200.0)
+    with pytest.raises(SimulationError) as info:
+        for _ in range(200):
+            w.step()
+    assert info.value.body == "bob"
+    assert "spring damping too high for dt" in info.value.cause
+    assert "needs dt < 0.01 s; try dt <= 0.0025 s" in info.value.cause
+    # c = 100 N s/m: 2 c dt / m = 3.3 and k dt^2 / m = 0.003, a sum under 4: it runs on
+    w = spring_world(10.0, damping=100.0)
+    for _ in range(600):
+        w.step()
     assert finite_state(w)
 
 
