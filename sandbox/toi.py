@@ -311,11 +311,12 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance,
     close either (as Box2D v3): the narrowphase's points are the features touching at the
     start, and a long box struck at one corner at speed spins its other corner through the
     ground. ``found`` = (contacts, k, joints), from a substep of the soft step: the
-    narrowphase ran once, before the substeps, so such a pair is left to the solver only when
-    it has a contact among the first ``k`` or its bodies share a joint; otherwise (stopped at
-    its impact by an earlier substep) its ccd body stays where it is (t = 0) until the next
-    step's narrowphase finds the contact; so does one whose core began within reach (deep in
-    the other shape: the position stage takes it out after the substeps).
+    narrowphase ran once, before the substeps, so such a pair (unless its bodies share a
+    joint: joined bodies do not collide) is left to the solver only when it has a contact
+    among the first ``k``; otherwise (stopped at its impact by an earlier substep) its ccd
+    body stays where it is (t = 0) until the next step's narrowphase finds the contact; so
+    does one whose core began within reach (deep in the other shape: the position stage
+    takes it out after the substeps).
     """
     frac = np.ones(bodies.shape[0])
     for q in range(pairs.shape[0]):
@@ -328,6 +329,8 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance,
         limits = (target_separation, tolerance)
         t = time_of_impact(shape_i, motion_i, shape_j, motion_j, *limits)
         if t <= 0.0:  # already in contact: the narrowphase handles it, up to the cores
+            if found is not None and joined(found[2], bodies.shape[0], bi, bj):
+                continue  # joined bodies do not collide
             t = 1.0
             if bodies[bi]["ccd"]:
                 t = core_impact(core_of(shape_i), motion_i, shape_j, motion_j, limits, t)
@@ -336,7 +339,7 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance,
             if found is None:  # the step's own narrowphase found these shapes touching
                 if t <= 0.0:
                     continue  # a core already that close: deep overlap, the position stage's
-            elif not left_to_solver(found, bodies.shape[0], i, j, bi, bj):
+            elif not in_contact(found[0], found[1], i, j):
                 t = 0.0
         for b in (bi, bj):
             if bodies[b]["ccd"] and t < frac[b]:
@@ -370,12 +373,8 @@ def core_impact(core, motion, other, other_motion, limits, t: float) -> float:
 
 
 @njit
-def left_to_solver(found, n_bodies: int, i: int, j: int, bi: int, bj: int) -> bool:
-    """Whether shapes i and j (of bodies bi, bj) have a contact among ``found`` = (contacts,
-    k, joints), or their bodies share a joint (joined bodies do not collide)."""
-    contacts, k, joints = found
-    if joints.shape[0] > 0 and joined(joints, n_bodies, bi, bj):
-        return True
+def in_contact(contacts, k: int, i: int, j: int) -> bool:
+    """Whether shapes i and j have a contact among the first ``k`` of ``contacts``."""
     for q in range(k):
         sa, sb = contacts[q]["shape_a"], contacts[q]["shape_b"]
         if (sa == i and sb == j) or (sa == j and sb == i):
