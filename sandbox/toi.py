@@ -27,7 +27,7 @@ import numpy as np
 from sandbox.jit import njit
 from sandbox.narrowphase import joined
 from sandbox.records import CIRCLE, POLYGON
-from sandbox.solvers.common import before
+from sandbox.solvers.common import first_at_or_after
 
 LINEAR_SLOP = 0.005  # m
 MAX_ITERATIONS = 64  # conservative advancement steps before giving up (the last t is used)
@@ -376,16 +376,9 @@ def core_impact(core, motion, other, other_motion, limits, t: float) -> float:
 @njit
 def in_contact(contacts, k: int, i: int, j: int) -> bool:
     """Whether shapes i < j have a contact among the first ``k`` of ``contacts``, which are in
-    pair order (sorted by (shape_a, shape_b), as the narrowphase writes them): a binary search,
-    as :func:`sandbox.solvers.common.match_previous` makes for contacts out of order."""
-    lo, hi = 0, k
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if before(contacts[mid]["shape_a"], contacts[mid]["shape_b"], i, j):
-            lo = mid + 1
-        else:
-            hi = mid
-    return lo < k and contacts[lo]["shape_a"] == i and contacts[lo]["shape_b"] == j
+    pair order (sorted by (shape_a, shape_b), as the narrowphase writes them)."""
+    q = first_at_or_after(contacts, k, i, j)
+    return q < k and contacts[q]["shape_a"] == i and contacts[q]["shape_b"] == j
 
 
 @njit

@@ -171,6 +171,20 @@ def before(sa0: int, sb0: int, sa: int, sb: int) -> bool:
 
 
 @njit
+def first_at_or_after(contacts, k: int, sa: int, sb: int) -> int:
+    """The first of the first ``k`` ``contacts`` (in pair order) whose shape pair is not
+    before (sa, sb): a binary search; ``k`` when there is none."""
+    lo, hi = 0, k
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if before(contacts[mid]["shape_a"], contacts[mid]["shape_b"], sa, sb):
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@njit
 def match_previous(contacts, k: int, previous, k_old: int) -> int:
     """Warm starting (box2d-lite's ``Arbiter::Update``): give each point of this step the
     impulses of the last step's point with the same shapes and feature id. Both lists are in
@@ -182,14 +196,7 @@ def match_previous(contacts, k: int, previous, k_old: int) -> int:
         c = contacts[i]
         sa, sb = c["shape_a"], c["shape_b"]
         if q > 0 and not before(previous[q - 1]["shape_a"], previous[q - 1]["shape_b"], sa, sb):
-            lo, hi = 0, q  # not in pair order (hand-made contacts): binary search
-            while lo < hi:
-                mid = (lo + hi) // 2
-                if before(previous[mid]["shape_a"], previous[mid]["shape_b"], sa, sb):
-                    lo = mid + 1
-                else:
-                    hi = mid
-            q = lo
+            q = first_at_or_after(previous, q, sa, sb)  # not in pair order (hand-made contacts)
         while q < k_old and before(previous[q]["shape_a"], previous[q]["shape_b"], sa, sb):
             q += 1
         if q == k_old or previous[q]["shape_a"] != sa or previous[q]["shape_b"] != sb:
