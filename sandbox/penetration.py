@@ -30,7 +30,8 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.joints.solve import solve_joint_positions
+from sandbox.joints.direct import solve_joint_positions_together
+from sandbox.joints.solve import soft_joint_plan, solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies
 from sandbox.solvers.iterative import visit
@@ -322,6 +323,8 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     layered = robust and needs_layers(contacts, k, bodies, triggers, gap)
     layering = position_order(contacts, k, bodies, layered, gap)
     bounds = (slop, push)
+    # the soft step solves its joints' positions together where it solves their relax pass so
+    together = ctx["soft"] and joints.shape[0] > 0 and soft_joint_plan(joints, bodies, context)[1]
     for _ in range(ctx["position_iterations"]):
         if method == IMPULSE:
             worst, moved = position_impulses(
@@ -334,7 +337,10 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
             if not moved:
                 break  # nothing moved: another pass would see the very same separations
             continue
-        joint_error = solve_joint_positions(joints, bodies)
+        if together:
+            joint_error = solve_joint_positions_together(joints, bodies)
+        else:
+            joint_error = solve_joint_positions(joints, bodies)
         if worst >= -3.0 * slop and joint_error <= slop:
             break
     turn_bodies(bodies, rot, ctx["orientation"], ctx["renormalise"])

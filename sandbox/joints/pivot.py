@@ -179,17 +179,25 @@ def limit_error(theta: float, lo: float, hi: float) -> float:
 
 
 @njit
+def solve_limit_position(j, bodies) -> float:
+    """NGS on the limits alone: the relative angle turned back within [lower, upper]; returns
+    how far outside it was (rad)."""
+    mass = inverse_masses(j, bodies)
+    axial = mass[1] + mass[3]
+    if not j["has_limits"] or axial <= 0.0:
+        return 0.0
+    c = limit_error(relative_angle(j, bodies), j["lower"], j["upper"])
+    if c != 0.0:
+        move_joint_bodies(j, bodies, (0.0, 0.0), (0.0, 0.0), 0.0, 0.0, -c / axial)
+    return abs(c)
+
+
+@njit
 def solve_pivot_position(j, bodies) -> float:
     """NGS on the limits, then on the point; returns the larger error found (m, or rad for a
     limit)."""
     mass = inverse_masses(j, bodies)
-    angular_error = 0.0
-    axial = mass[1] + mass[3]
-    if j["has_limits"] and axial > 0.0:
-        c = limit_error(relative_angle(j, bodies), j["lower"], j["upper"])
-        angular_error = abs(c)
-        if c != 0.0:
-            move_joint_bodies(j, bodies, (0.0, 0.0), (0.0, 0.0), 0.0, 0.0, -c / axial)
+    angular_error = solve_limit_position(j, bodies)
     a, b = bodies[j["a"]], bodies[j["b"]]
     ra, rb = arm(a, j["local_a"]), arm(b, j["local_b"])
     cx = b["com"][0] + rb[0] - a["com"][0] - ra[0]
