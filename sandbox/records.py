@@ -112,6 +112,8 @@ CONTACT_POINT = np.dtype(
         ("approach_speed", F8),  # v_r . n when the step began, before gravity (m/s)
         ("base_separation", F8),  # soft step: -depth - (r_b - r_a) . n, for the separation now
         ("separation", F8),  # soft step: the separation at the bodies' latest poses (m)
+        ("anchor_a", V2),  # soft step: the point a's separation follows, a's body frame (m):
+        ("anchor_b", V2),  # local_a, or a circle's centre (a circle turns under its contact)
         ("bounce_impulse", F8),  # what the passes after the sweeps added (N s), not warm-started
     ],
     align=True,

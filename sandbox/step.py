@@ -283,14 +283,14 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work) -> Non
 def begin_soft(contacts, k: int, previous, model, context) -> None:
     """The soft step's prepare stages: contacts (with their softness and base separations)
     and joints, once for the whole step; the bodies' moves are counted from here."""
-    bodies, joints = model[0], model[3]
+    bodies, shapes, joints = model[0], model[1], model[3]
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
     prepare(contacts, k, previous, bodies, context, False)
     ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(contacts, k, bodies, context)
-    prepare_soft(contacts, k, bodies, context)
+    prepare_soft(contacts, k, shapes, bodies, context)
     gather_forces(bodies)
     prepare_joints_soft(joints, bodies, context)
 

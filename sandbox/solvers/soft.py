@@ -48,6 +48,7 @@ import numpy as np
 
 from sandbox.jit import njit
 from sandbox.math2d import rotate, set_velocity, velocity_of
+from sandbox.records import CIRCLE
 from sandbox.solvers.common import (
     apply_normal,
     apply_tangent,
@@ -85,10 +86,30 @@ def with_fixed(c) -> bool:
 
 
 @njit
-def prepare_soft(contacts, k: int, bodies, context) -> None:
+def anchor(c, p, side: int, shapes, bodies):
+    """The point that the separation of contact point ``p`` follows on side ``side`` (0: a,
+    1: b), in that body's frame about its centre of mass (m), and where it is now relative to
+    the centre of mass, in the world (m). On a polygon it is the contact point itself
+    (``local_a``, ``local_b``), fixed to the body; on a circle it is the circle's centre: the
+    surface point facing the normal is the centre less the radius along it however the circle
+    turns, where a spinning ball's material point would swing off the contact by
+    r (1 - cos dphi) (a 5 cm bullet sliding down a wall at 330 rad/s: 3 cm into the wall)."""
+    shape = shapes[c["shape_b"] if side else c["shape_a"]]
+    body = bodies[c["b"] if side else c["a"]]
+    if shape["kind"] == CIRCLE:
+        local = shape["center"]
+        x, y = rotate(body["cs"][0], body["cs"][1], local[0], local[1])
+        return local[0], local[1], x, y
+    local = p["local_b"] if side else p["local_a"]
+    return local[0], local[1], p["point"][0] - body["com"][0], p["point"][1] - body["com"][1]
+
+
+@njit
+def prepare_soft(contacts, k: int, shapes, bodies, context) -> None:
     """The soft step's additions to :func:`sandbox.solvers.common.prepare_contacts`: each
-    point's base separation s0 - (r_b - r_a) . n, and each contact's softness (twice the
-    stiffness against a body that cannot move). No stiffer than an eighth of the substep rate
+    point's anchors (:func:`anchor`) and base separation s0 - (r_b - r_a) . n, r the anchors'
+    arms now, and each contact's softness (twice the stiffness against a body that cannot
+    move). No stiffer than an eighth of the substep rate
     (MAX_CONTACT_HERTZ_PER_RATE, as Box2D since v3.1): at a quarter (Box2D v3.0) a pyramid of 40
     boxes rings forever, its top box swinging between 15 mm up and 69 mm down (Box2D's own solver
     with the quarter cap rings too); at an eighth it rests."""
@@ -103,13 +124,11 @@ def prepare_soft(contacts, k: int, bodies, context) -> None:
         c["soft_bias_rate"], c["soft_mass_scale"] = rate, mass_scale
         c["soft_impulse_scale"] = impulse_scale
         nx, ny = c["normal"][0], c["normal"][1]
-        com_a, com_b = bodies[c["a"]]["com"], bodies[c["b"]]["com"]
         for j in range(c["count"]):
             p = c["points"][j]
-            # r_b - r_a, with the arms as the prepare stage found them
-            dx = (p["point"][0] - com_b[0]) - (p["point"][0] - com_a[0])
-            dy = (p["point"][1] - com_b[1]) - (p["point"][1] - com_a[1])
-            p["base_separation"] = -p["depth"] - (dx * nx + dy * ny)
+            p["anchor_a"][0], p["anchor_a"][1], rax, ray = anchor(c, p, 0, shapes, bodies)
+            p["anchor_b"][0], p["anchor_b"][1], rbx, rby = anchor(c, p, 1, shapes, bodies)
+            p["base_separation"] = -p["depth"] - ((rbx - rax) * nx + (rby - ray) * ny)
             p["separation"] = separation_now(c, p, bodies)  # what the first solve pass needs
 
 
@@ -190,10 +209,11 @@ def rising(lower, normal, lower_is_a: bool) -> float:
 @njit
 def separation_now(c, p, bodies) -> float:
     """The point's separation after the bodies' moves this step (m, < 0 overlapping):
-    s = s_base + ((dp_b - dp_a) + R_b l_b - R_a l_a) . n, the normal held fixed."""
+    s = s_base + ((dp_b - dp_a) + R_b l_b - R_a l_a) . n, the normal held fixed, l the
+    anchors (:func:`anchor`)."""
     a, b = bodies[c["a"]], bodies[c["b"]]
-    rax, ray = rotate(a["cs"][0], a["cs"][1], p["local_a"][0], p["local_a"][1])
-    rbx, rby = rotate(b["cs"][0], b["cs"][1], p["local_b"][0], p["local_b"][1])
+    rax, ray = rotate(a["cs"][0], a["cs"][1], p["anchor_a"][0], p["anchor_a"][1])
+    rbx, rby = rotate(b["cs"][0], b["cs"][1], p["anchor_b"][0], p["anchor_b"][1])
     dx = b["delta_position"][0] - a["delta_position"][0] + rbx - rax
     dy = b["delta_position"][1] - a["delta_position"][1] + rby - ray
     return p["base_separation"] + dx * c["normal"][0] + dy * c["normal"][1]
