@@ -327,8 +327,9 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 # drops about four times as far each time the base doubles (2.0, 7.6, 30, 123 mm), as the
 # square of the height. At the defaults those springs are soft: the contacts between boxes run
 # at 30 Hz, not the 60 Hz of `contact_hertz` (the cap of section 3). Joints have no such cap
-# (they are 120 Hz springs, solved all together: section 6), and on the chains the soft step
-# stretches between a quarter and a thirteenth as much (1.3 to 2.4 mm). Every pyramid
+# (they are 120 Hz springs, solved all together, and the position stage after the substeps
+# solves their positions together too: section 6), and on the chains the soft step stretches
+# less than a tenth of a millimetre at any length (0.00 to 0.04 mm). Every pyramid
 # comes to rest: the soft step's largest drop in the last 5 s is its drop at 10 s to 0.05 mm
 # (in the figure the dotted line lies on the solid one).
 #
@@ -875,7 +876,7 @@ axes[0].set(xlabel="t (s)", ylabel="top box drop (mm)",
             title=f"pyramid of base {BASE}: top box drop")  # fmt: skip
 for ax, name in zip(axes[1:], ("chain", "heavy chain"), strict=True):
     ax.set(yscale="log", xlabel="t (s)", ylabel="worst link stretch (mm)",
-           title=f"{name}: worst joint separation")  # fmt: skip
+           title=f"{name}: worst joint separation (floor 0.01 mm)")  # fmt: skip
     plain_log(ax, "y")
 for ax in axes:
     ax.grid(alpha=0.3)
@@ -911,10 +912,10 @@ for name, view in views.items():
 #   last 5 s); its top box moved 3.0 cm sideways in 10 s, all of it while the pyramid settled
 #   (section 6), where the iterative one moved 1 mm. In the animation the soft and iterative
 #   pyramids lie almost on top of each other.
-# - **chain**: soft 2.7 mm at worst, iterative and shock 17.9 mm (shock propagation only
+# - **chain**: soft 0.04 mm at worst, iterative and shock 17.9 mm (shock propagation only
 #   changes how contacts are solved: for joints it is the iterative solver, its line lies
 #   under the iterative one), pymunk 201 mm, pairwise comes apart.
-# - **heavy chain**: only the soft step keeps it together, 7.8 mm at worst. Under iterative and
+# - **heavy chain**: only the soft step keeps it together, under 0.01 mm. Under iterative and
 #   shock it holds until about 3.5 s, then the links part (tens of metres apart by 10 s);
 #   pymunk and pairwise come apart in the first swing.
 # - **cost**: on the pyramid all of them take a few ms per step here (the table), the soft step
@@ -1067,7 +1068,12 @@ def joint_passes(world: World, direct: bool, count: int) -> np.ndarray:
     return np.array(out)
 
 
-worst_step = int(np.argmax(runs[("heavy chain", "soft")]["value"][0]))
+whip, spin = load(HEAVY, "soft"), []  # the moment the chain whips fastest, at the defaults
+for _ in range(round(DURATION / DT)):
+    whip.step()
+    spin.append(max(abs(b.angular_velocity) for b in whip.bodies))
+worst_step = int(np.argmax(spin)) + 1
+print(f"fastest whip: {worst_step * DT:.2f} s, a body turning at {max(spin):.1f} rad/s")
 frozen = load(HEAVY, "soft")
 for _ in range(worst_step - 1):
     frozen.step()
@@ -1084,7 +1090,7 @@ ax.axvline(sandbox.Settings().iterations, color="0.4", ls=":", lw=1.2,
            label=f"the sweeps a substep gets ({sandbox.Settings().iterations})")  # fmt: skip
 ax.set(xscale="log", yscale="log", xlabel="passes over the joints, n (count)",
        ylabel="largest velocity difference (m/s or rad/s)",
-       title=f"(a) heavy chain at {worst_step * DT:.2f} s: one biased pass")  # fmt: skip
+       title=f"(a) heavy chain whipping at {worst_step * DT:.2f} s: one biased pass")  # fmt: skip
 ax.grid(alpha=0.3, which="both")
 ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
 for label, style in (("defaults", "-"), ("joint_solver sweeps", ":")):
@@ -1105,22 +1111,33 @@ print_table(["passes over the joints", "swept: largest difference (m/s)",
              for k in (1, 2, 3, 10, 100, 1000)], 2)  # fmt: skip
 
 # %% [markdown]
-# (a) At the heavy chain's worst moment (6.47 s, the chain whipping), one sweep leaves the
-# velocities 21 m/s from where the sweeps converge, ten sweeps (what a substep gets) still
-# 12 m/s, a hundred 0.008 m/s; it takes about 400 to reach rounding. One direct pass lands
-# 2.5 m/s from it, two 0.2 m/s, three 0.014 m/s. The rows are linear in the impulses, but the
-# arc correction of each pivot (lesson 11) reads the bodies' angular velocities, which the
-# pass changes: one pass uses them as they were at its start, a sweep as they are. On a
-# whipping chain (tens of rad/s) that matters; one pass is still five times closer than the
-# ten sweeps it replaces, and costs less (the chain scenes' "ms per step" above).
+# (a) At the moment the heavy chain whips fastest (4.02 s, a link turning at 12.2 rad/s), one
+# sweep leaves the velocities 0.81 m/s from where the sweeps converge, ten sweeps (what a
+# substep gets) still 0.49 m/s, a hundred 0.006 m/s; it takes several hundred to reach
+# rounding. One direct pass lands 0.004 m/s from it, two 8e-6 m/s, three 1e-8 m/s. The rows
+# are linear in the impulses, but the arc correction of each pivot (lesson 11) reads the
+# bodies' angular velocities, which the pass changes: one pass uses them as they were at its
+# start, a sweep as they are, and that is all the direct passes leave. (Before the position
+# stage solved the joints together too, the chain whipped at tens of rad/s, and there one pass
+# landed 2.5 m/s off: still five times closer than the ten sweeps it replaces.) It costs less
+# than those ten sweeps (the chain scenes' "ms per step" above).
 #
-# (b) Through the run, the chain solved together stays within 2.5 mm except for a few spikes
-# when it whips (6 to 7 s), 7.8 mm at worst, under the issue's 1 cm. Swept, the same joints
-# pass 1 cm in every swing, 17.5 mm at worst. The table above has the rest: swept, the
-# 20-link chain needs the 120 Hz joints to stay under 5 mm (3.9 mm; 10.4 mm at Box2D's 60 Hz);
-# solved together it holds 2.7 mm at either stiffness. The heavy chain is under 1 cm solved
-# together at 120 Hz (7.8 mm) and with 8 substeps (4.7 mm, 2.2 mm with damping ratio 2), but
-# not at 60 Hz (13.8 mm), where its springs are four times softer (the mass ratios, below).
+# (b) Through the run, the chain solved together stays within a hundredth of a millimetre;
+# swept, the same joints pass 1 cm in every swing, 17.5 mm at worst. Two things hold it. The
+# substeps' passes solve the joints' velocities together (above), and the position stage after
+# the substeps (the same stage that pushes overlapping contacts apart, lesson 8) solves their
+# positions together too: one linear solve of $K\,\Delta = -C$ per pass, $C$ each pivot's gap
+# between its two anchors, the position twin of the velocity solve (non-linear Gauss-Seidel
+# with the whole chain in one step, `solve_joint_positions_together`). Swept one joint at a time,
+# that stage's three passes moved the heavy ball as little as the velocity sweeps do, and the
+# chain ended steps 8 to 15 mm stretched when it snapped taut behind the swinging ball (7.8 mm
+# at 100 link masses, 12.2 and 14.9 mm at 101 and 102). Solved together, one pass leaves only
+# what the linearisation misses. Where the linear solve would turn a light link by more than
+# 0.15 rad (a nearly straight taut stretch of links shortens, to first order, only by turning
+# them a lot), the pass is scaled down, as a damped Newton step. The table above has the rest:
+# swept, the 20-link chain needs the 120 Hz joints to stay under 5 mm (3.9 mm; 10.4 mm at
+# Box2D's 60 Hz); solved together, both chains hold within 0.1 mm at either stiffness, and the
+# heavy chain within 1.6 mm with 8 substeps.
 
 # %% [markdown]
 # How stiff should the joints be? The default was chosen by running both chains at the default
@@ -1162,15 +1179,14 @@ print_table(["joint_hertz (Hz)", "h omega", "chain: worst stretch (mm)",
 # %% [markdown]
 # Swept, the joints need stiffness: the 20-link chain stretches 29 mm at 30 Hz, 10.4 mm at
 # Box2D's 60 Hz, 3.9 mm at 120 Hz; that is why the default here is 120 Hz and not Box2D's 60.
-# Solved together, the 20-link chain holds within 5 mm from 30 Hz on (4.3 mm) and the heavy
-# chain stretches 12 to 14 mm from 30 to 60 Hz, where swept it stretches 47 to 185 mm. At
-# 120 Hz ($h\omega = \pi$ at the default step) both chains are within the issue's bounds
-# (2.7 and 7.8 mm). Past it the results turn erratic both ways (6.9 mm at 180 Hz and 10.4 mm
-# at 360 Hz for the chain solved together, 45.4 mm at 480 Hz for the heavy chain swept): the
-# substep no longer follows the spring, and since the worst stretch is the peak of a chaotic
-# swing, one run says little about its neighbours. $h\omega$ grows with the step: at
-# dt = 1/30 s, 120 Hz is where 240 Hz is here, so 120 Hz keeps a margin of two. 8 substeps help
-# the heavy chain (4.7 mm) at twice the cost per step.
+# Solved together (velocities in the substeps, positions in the stage after them), both chains
+# hold within 0.11 mm at every stiffness from 30 to 480 Hz, where swept the heavy chain
+# stretches 12 to 185 mm. Swept, the results also turn erratic past 120 Hz
+# ($h\omega = \pi$ at the default step: 5.1 mm at 360 Hz for the chain, 42 mm at 480 Hz
+# for the heavy chain): the substep no longer follows the spring, and since the worst stretch
+# is the peak of a chaotic swing, one run says little about its neighbours. $h\omega$ grows
+# with the step: at dt = 1/30 s, 120 Hz is where 240 Hz is here, so 120 Hz keeps a margin of
+# two.
 #
 # **Mass ratios.** Section 2's static error is where it starts: a soft constraint is a spring
 # of stiffness $k = m\,\omega^2$ with $m$ its effective mass, and for two bodies of very
@@ -1182,10 +1198,12 @@ print_table(["joint_hertz (Hz)", "h omega", "chain: worst stretch (mm)",
 #
 # the error grows with the mass ratio, 0.07 mm per unit of ratio at 60 Hz: 2.8 cm at 400. The
 # heavy chain's ball (100 link masses) hangs on 1 kg links: 1.7 mm of static error at the
-# ball's 120 Hz joint, 3.4 mm at the joints between two links ($m_{eff}$ = 0.5 kg). The
-# measured 7.8 mm is about twice that: a swing released from the horizontal triples the load
-# at the bottom of its arc, and the whip of the chain adds more. Swept, the joints stretch
-# 17.5 mm: on top comes the error the sweeps leave between the light links and the heavy ball.
+# ball's 120 Hz joint, 3.4 mm at the joints between two links ($m_{eff}$ = 0.5 kg), and a swing
+# released from the horizontal triples the load at the bottom of its arc. The substeps leave
+# that error; the position stage after them takes it out (the heavy chain ends each step within
+# 0.01 mm), so it shows only with `position_correction` off, as in section 2's hanging discs.
+# Swept, the joints stretch 17.5 mm: on top comes the error the sweeps leave between the light
+# links and the heavy ball.
 # A rigid solver has the opposite trouble (the light
 # body's impulses cannot move the heavy one, and the sweeps converge slowly), shock
 # propagation treats the lower body as immovable and does not care. Here: a 1 kg box of 1 m on
@@ -1280,9 +1298,9 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # measurements do not make the soft step, with its current defaults, a better choice
 # everywhere:
 #
-# - **the soft step wins** on long chains (2.7 mm against 17.9 mm) and on heavy loads on
-#   chains (7.8 mm where the iterative chain comes apart): its joints are 120 Hz springs,
-#   solved together. It also wins on stacks at about equal cost once it gets 8 substeps
+# - **the soft step wins** on long chains (0.04 mm against 17.9 mm) and on heavy loads on
+#   chains (0.01 mm where the iterative chain comes apart): its joints are 120 Hz springs,
+#   solved together, velocities and positions. It also wins on stacks at about equal cost once it gets 8 substeps
 #   (section 3: 7.5 mm against 18 mm for 20 sweeps on the pyramid of base 20, 1.9 mm against
 #   7.2 for 40), and on the 400:1 boxes (0.1 mm each against the iterative solver's 5 mm slop),
 #   where it holds the light box still as shock propagation does;
