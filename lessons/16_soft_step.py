@@ -329,7 +329,7 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 # at 30 Hz, not the 60 Hz of `contact_hertz` (the cap of section 3). Joints have no such cap
 # (they are 120 Hz springs, solved all together, and the position stage after the substeps
 # solves their positions together too: section 6), and on the chains the soft step stretches
-# less than a tenth of a millimetre at any length (0.00 to 0.04 mm). Every pyramid
+# less than a hundredth of a millimetre at any length. Every pyramid
 # comes to rest: the soft step's largest drop in the last 5 s is its drop at 10 s to 0.05 mm
 # (in the figure the dotted line lies on the solid one).
 #
@@ -912,10 +912,10 @@ for name, view in views.items():
 #   last 5 s); its top box moved 3.0 cm sideways in 10 s, all of it while the pyramid settled
 #   (section 6), where the iterative one moved 1 mm. In the animation the soft and iterative
 #   pyramids lie almost on top of each other.
-# - **chain**: soft 0.04 mm at worst, iterative and shock 17.9 mm (shock propagation only
+# - **chain**: soft under 0.01 mm, iterative and shock 17.9 mm (shock propagation only
 #   changes how contacts are solved: for joints it is the iterative solver, its line lies
 #   under the iterative one), pymunk 201 mm, pairwise comes apart.
-# - **heavy chain**: only the soft step keeps it together, under 0.01 mm. Under iterative and
+# - **heavy chain**: only the soft step keeps it together, 0.11 mm at worst. Under iterative and
 #   shock it holds until about 3.5 s, then the links part (tens of metres apart by 10 s);
 #   pymunk and pairwise come apart in the first swing.
 # - **cost**: on the pyramid all of them take a few ms per step here (the table), the soft step
@@ -1111,19 +1111,17 @@ print_table(["passes over the joints", "swept: largest difference (m/s)",
              for k in (1, 2, 3, 10, 100, 1000)], 2)  # fmt: skip
 
 # %% [markdown]
-# (a) At the moment the heavy chain whips fastest (4.02 s, a link turning at 12.2 rad/s), one
-# sweep leaves the velocities 0.81 m/s from where the sweeps converge, ten sweeps (what a
-# substep gets) still 0.49 m/s, a hundred 0.006 m/s; it takes several hundred to reach
-# rounding. One direct pass lands 0.004 m/s from it, two 8e-6 m/s, three 1e-8 m/s. The rows
-# are linear in the impulses, but the arc correction of each pivot (lesson 11) reads the
-# bodies' angular velocities, which the pass changes: one pass uses them as they were at its
-# start, a sweep as they are, and that is all the direct passes leave. (Before the position
-# stage solved the joints together too, the chain whipped at tens of rad/s, and there one pass
-# landed 2.5 m/s off: still five times closer than the ten sweeps it replaces.) It costs less
-# than those ten sweeps (the chain scenes' "ms per step" above).
+# (a) At the moment the heavy chain whips fastest (8.85 s, a body turning at 40.6 rad/s), one
+# sweep leaves the velocities 40 m/s from where the sweeps converge, ten sweeps (what a substep
+# gets) still 22 m/s, a hundred 0.018 m/s; it takes several hundred to reach rounding. One
+# direct pass lands 0.94 m/s from it, two 0.25 m/s, three 0.06 m/s. The rows are linear in the
+# impulses, but the arc correction of each pivot (lesson 11) reads the bodies' angular
+# velocities, which the pass changes: one pass uses them as they were at its start, a sweep as
+# they are. On a whipping chain that matters; one pass is still more than twenty times closer
+# than the ten sweeps it replaces, and costs less (the chain scenes' "ms per step" above).
 #
-# (b) Through the run, the chain solved together stays within a hundredth of a millimetre;
-# swept, the same joints pass 1 cm in every swing, 17.5 mm at worst. Two things hold it. The
+# (b) Through the run, the chain solved together stays within 0.11 mm; swept, the same joints
+# pass 1 cm in every swing, 17.5 mm at worst. Two things hold it. The
 # substeps' passes solve the joints' velocities together (above), and the position stage after
 # the substeps (the same stage that pushes overlapping contacts apart, lesson 8) solves their
 # positions together too: one linear solve of $K\,\Delta = -C$ per pass, $C$ each pivot's gap
@@ -1132,12 +1130,16 @@ print_table(["passes over the joints", "swept: largest difference (m/s)",
 # that stage's three passes moved the heavy ball as little as the velocity sweeps do, and the
 # chain ended steps 8 to 15 mm stretched when it snapped taut behind the swinging ball (7.8 mm
 # at 100 link masses, 12.2 and 14.9 mm at 101 and 102). Solved together, one pass leaves only
-# what the linearisation misses. Where the linear solve would turn a light link by more than
-# 0.15 rad (a nearly straight taut stretch of links shortens, to first order, only by turning
-# them a lot), the pass is scaled down, as a damped Newton step. The table above has the rest:
-# swept, the 20-link chain needs the 120 Hz joints to stay under 5 mm (3.9 mm; 10.4 mm at
-# Box2D's 60 Hz); solved together, both chains hold within 0.1 mm at either stiffness, and the
-# heavy chain within 1.6 mm with 8 substeps.
+# what the linearisation misses, and which correction it makes is a free choice: a position
+# pass is a projection onto the joints, not dynamics. Weighed by the bodies' own masses, the
+# cheapest correction turns the light links (the heavy ball barely moves), and turning is not
+# linear: near a straight taut line it hardly shortens the chain, and passes turned links by
+# tenths of a radian while the gaps stayed (10 mm at 95 link masses). So the stage weighs
+# turning 100 times heavier than the moments of inertia say (`TURN_WEIGHT`): the bodies move
+# rather than turn, moving is linear, and one pass closes the gaps. A pass that would still
+# turn a body more than 0.15 rad or move it more than 0.2 m is scaled down. The table above has
+# the rest: swept, the 20-link chain needs the 120 Hz joints to stay under 5 mm (3.9 mm;
+# 10.4 mm at Box2D's 60 Hz); solved together, both chains hold within 0.12 mm in every row.
 
 # %% [markdown]
 # How stiff should the joints be? The default was chosen by running both chains at the default
@@ -1180,7 +1182,7 @@ print_table(["joint_hertz (Hz)", "h omega", "chain: worst stretch (mm)",
 # Swept, the joints need stiffness: the 20-link chain stretches 29 mm at 30 Hz, 10.4 mm at
 # Box2D's 60 Hz, 3.9 mm at 120 Hz; that is why the default here is 120 Hz and not Box2D's 60.
 # Solved together (velocities in the substeps, positions in the stage after them), both chains
-# hold within 0.11 mm at every stiffness from 30 to 480 Hz, where swept the heavy chain
+# hold within 0.3 mm at every stiffness from 30 to 480 Hz, where swept the heavy chain
 # stretches 12 to 185 mm. Swept, the results also turn erratic past 120 Hz
 # ($h\omega = \pi$ at the default step: 5.1 mm at 360 Hz for the chain, 42 mm at 480 Hz
 # for the heavy chain): the substep no longer follows the spring, and since the worst stretch
@@ -1201,7 +1203,7 @@ print_table(["joint_hertz (Hz)", "h omega", "chain: worst stretch (mm)",
 # ball's 120 Hz joint, 3.4 mm at the joints between two links ($m_{eff}$ = 0.5 kg), and a swing
 # released from the horizontal triples the load at the bottom of its arc. The substeps leave
 # that error; the position stage after them takes it out (the heavy chain ends each step within
-# 0.01 mm), so it shows only with `position_correction` off, as in section 2's hanging discs.
+# 0.11 mm), so it shows only with `position_correction` off, as in section 2's hanging discs.
 # Swept, the joints stretch 17.5 mm: on top comes the error the sweeps leave between the light
 # links and the heavy ball.
 # A rigid solver has the opposite trouble (the light
@@ -1298,8 +1300,8 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # measurements do not make the soft step, with its current defaults, a better choice
 # everywhere:
 #
-# - **the soft step wins** on long chains (0.04 mm against 17.9 mm) and on heavy loads on
-#   chains (0.01 mm where the iterative chain comes apart): its joints are 120 Hz springs,
+# - **the soft step wins** on long chains (under 0.01 mm against 17.9 mm) and on heavy loads on
+#   chains (0.11 mm where the iterative chain comes apart): its joints are 120 Hz springs,
 #   solved together, velocities and positions. It also wins on stacks at about equal cost once it gets 8 substeps
 #   (section 3: 7.5 mm against 18 mm for 20 sweeps on the pyramid of base 20, 1.9 mm against
 #   7.2 for 40), and on the 400:1 boxes (0.1 mm each against the iterative solver's 5 mm slop),

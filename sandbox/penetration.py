@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.joints.direct import solve_joint_positions_together
+from sandbox.joints.positions_together import solve_joint_positions_together
 from sandbox.joints.solve import soft_joint_plan, solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies

@@ -139,16 +139,18 @@ def test_long_chain_does_not_stretch():
 
 def test_heavy_ball_on_a_chain_stays_on():
     # a ball of 100 link masses on 10 links: the iterative solver lets the chain come apart
-    # (tens of metres); the soft step keeps every hinge within the issue's 1 cm at 99 to 102
-    # link masses (measured at most 0.1 mm). Its joints are solved together in the velocity
-    # passes and in the position stage too
-    # (sandbox.joints.direct.solve_joint_positions_together): with the position passes swept
-    # one joint at a time the worst stretch came when the chain snapped taut behind the
-    # swinging ball, and it was chaotic in the ball's mass (7.8 mm at 100, 12.2 and 14.9 mm
-    # at 101 and 102). Swept in the velocity passes too, the light links pass the ball's pull
-    # on so slowly that the chain stretches 17.5 mm (47 mm at 60 Hz)
-    for ball in (99.0, 100.0, 101.0, 102.0):
-        assert worst_stretch(chain(10, ball=ball)) < 0.01, ball
+    # (tens of metres); the soft step keeps every hinge within 2 mm from 50 to 200 link masses
+    # (the issue asks for 1 cm at 100; measured at most 0.4 mm). Its joints are solved
+    # together in the velocity passes and in the position stage
+    # (sandbox.joints.positions_together), where the bodies move rather
+    # than turn. With the position passes swept one joint at a time the worst stretch came when
+    # the chain snapped taut behind the swinging ball, chaotic in the ball's mass (7.8 mm at
+    # 100, 12.2 and 14.9 mm at 101 and 102); solved together with turning weighed as the
+    # moments of inertia say, 5.6 and 10.2 mm at 90 and 95. Swept in the velocity passes too,
+    # the light links pass the ball's pull on so slowly that the chain stretches 17.5 mm
+    # (47 mm at 60 Hz)
+    for ball in (50.0, 90.0, 95.0, 100.0, 103.0, 200.0):
+        assert worst_stretch(chain(10, ball=ball)) < 0.002, ball
     assert worst_stretch(chain(10, ball=100.0, joint_solver="sweeps")) > 0.015
     assert worst_stretch(chain(10, ball=100.0, joint_solver="sweeps", joint_hertz=60.0)) > 0.035
 

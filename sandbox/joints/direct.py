@@ -47,21 +47,14 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.joints.base import (
-    MAX_LINEAR_CORRECTION,
-    apply_joint_impulse,
-    arm,
-    inverse_masses,
-    move_joint_bodies,
-)
-from sandbox.joints.pin import pin_rod_error, rod
-from sandbox.joints.pivot import pivot_point_error, solve_limit_position, solve_pivot_axial_soft
+from sandbox.joints.base import apply_joint_impulse, arm, inverse_masses
+from sandbox.joints.pin import pin_rod_error
+from sandbox.joints.pivot import pivot_point_error, solve_pivot_axial_soft
 from sandbox.math2d import cross, set_velocity, velocity_of
 from sandbox.records import JOINT_ROW, PIN, PIVOT
 from sandbox.sleep import root  # union-find, as the sleeping islands use it
 
 NARROW = 100.0  # joint_solver auto: together while the mean squared reach is at most this
-MAX_TURN = 0.15  # rad: the most a joint position pass solved together turns a body
 DEPENDENT = 1e-9  # a pivot below this times its row's diagonal: a redundant row, dropped
 
 
@@ -328,69 +321,3 @@ def solve_rows(rows, bodies, c: float):
     assemble(rows, c, first, start, a, delta)
     cholesky_solve(a, delta, first, start)
     return delta
-
-
-@njit
-def solve_joint_positions_together(joints, bodies) -> float:
-    """The position stage's pass over the joints, solved together: limits swept (as
-    :func:`~sandbox.joints.pivot.solve_pivot_position`), then every point row at once, the
-    position twin of :func:`solve_joints_direct` (non-linear Gauss-Seidel with one linear solve
-    per pass, K at the arms now, C the anchors' gap: a pivot's (c_b + r_b) - (c_a + r_a), a
-    pin's |p_b - p_a| - L along the rod, at most ``MAX_LINEAR_CORRECTION``). Swept one joint
-    at a time, a light chain passes a heavy ball's pull on as slowly as the velocity sweeps do
-    (m_light / m_heavy of the error a pass) and three passes leave a 10-link chain under a
-    ball of 100 links 7 to 15 mm stretched. Returns the largest error found before the pass
-    (m or rad)."""
-    worst = 0.0
-    for i in range(joints.shape[0]):
-        if joints[i]["kind"] == PIVOT:
-            worst = max(worst, solve_limit_position(joints[i], bodies))
-    m = count_rows(joints)
-    if m == 0:
-        return worst
-    rows = np.empty(m, dtype=JOINT_ROW)
-    arms = np.zeros((joints.shape[0], 4))  # r_a, r_b before the pass: K's arms
-    r = 0
-    for i in range(joints.shape[0]):
-        j = joints[i]
-        if j["kind"] == PIVOT:
-            ra, rb = arm(bodies[j["a"]], j["local_a"]), arm(bodies[j["b"]], j["local_b"])
-            cx = bodies[j["b"]]["com"][0] + rb[0] - bodies[j["a"]]["com"][0] - ra[0]
-            cy = bodies[j["b"]]["com"][1] + rb[1] - bodies[j["a"]]["com"][1] - ra[1]
-            worst = max(worst, np.hypot(cx, cy))
-            set_row(rows[r], i, j, bodies, (ra, rb), (1.0, 0.0), cx, 0.0)
-            set_row(rows[r + 1], i, j, bodies, (ra, rb), (0.0, 1.0), cy, 0.0)
-            r += 2
-        elif j["kind"] == PIN:
-            ra, rb, u, length, _ = rod(j, bodies)
-            error = length - j["length"]
-            worst = max(worst, abs(error))
-            error = min(max(error, -MAX_LINEAR_CORRECTION), MAX_LINEAR_CORRECTION)
-            set_row(rows[r], i, j, bodies, (ra, rb), u, error, 0.0)
-            r += 1
-        else:
-            continue
-        arms[i, 0], arms[i, 1], arms[i, 2], arms[i, 3] = ra[0], ra[1], rb[0], rb[1]
-    delta = solve_rows(rows, bodies, 0.0)
-    push = np.zeros((joints.shape[0], 2))  # each joint's pseudo impulse P = sum of Delta_r d_r
-    turn = np.zeros(bodies.shape[0])  # how far P would turn each body (rad)
-    for r in range(m):
-        i = rows[r]["joint"]
-        push[i, 0] += delta[r] * rows[r]["d"][0]
-        push[i, 1] += delta[r] * rows[r]["d"][1]
-    for i in range(joints.shape[0]):
-        j = joints[i]
-        mass = inverse_masses(j, bodies)
-        turn[j["a"]] += abs(mass[1] * cross(arms[i, 0], arms[i, 1], push[i, 0], push[i, 1]))
-        turn[j["b"]] += abs(mass[3] * cross(arms[i, 2], arms[i, 3], push[i, 0], push[i, 1]))
-    # a taut stretch of light links shortens, to first order, only by turning them a lot while
-    # the heavy body they hold barely moves: where the linear solve would turn a body more than
-    # MAX_TURN, the whole pass is scaled down (a damped Newton step)
-    most = turn.max()
-    scale = MAX_TURN / most if most > MAX_TURN else 1.0
-    for i in range(joints.shape[0]):
-        if joints[i]["kind"] == PIN or joints[i]["kind"] == PIVOT:
-            ra, rb = (arms[i, 0], arms[i, 1]), (arms[i, 2], arms[i, 3])
-            px, py = scale * push[i, 0], scale * push[i, 1]
-            move_joint_bodies(joints[i], bodies, ra, rb, px, py, 0.0)
-    return worst
