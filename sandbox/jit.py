@@ -5,7 +5,7 @@ stepping through them in a debugger or reading a traceback line by line.
 
 Compiled code is cached on disk (``cache=True``, in :data:`sandbox.compile_cache.CACHE_FOLDER`)
 so only the first run compiles; nothing is compiled until a kernel first runs. Compiling takes
-tens of seconds the first time: on a terminal a one-line notice and a progress bar say so
+tens of seconds the first time: a one-line notice says so, and on a terminal a progress bar
 (:class:`CompileNotice`).
 """
 
@@ -30,8 +30,10 @@ if JIT_ENABLED:
     _CACHE = CACHE_FOLDER is not None
 
     class CompileNotice(numba.core.event.Listener):
-        """While kernels compile (the first runs on a machine), a one-line notice and a progress
-        bar on a terminal, so a wait of tens of seconds is never silent."""
+        """While kernels compile (the first runs on a machine), a one-line notice, and on a
+        terminal a progress bar, so a wait of tens of seconds is never silent (in a notebook
+        either: its stderr is no terminal). Loading compiled kernels from the cache is no
+        compile event, so a warm run says nothing."""
 
         EXPECTED = 150  # kernels a world of every kind compiles (the bar's length)
 
@@ -41,14 +43,14 @@ if JIT_ENABLED:
             self.told = False
 
         def on_start(self, event) -> None:
+            if self.depth == 0 and not self.told:  # a notebook or a log gets the line too
+                print(
+                    "note: compiling the engine for this machine, once (later runs load it; "
+                    "`sandbox warmup` does it ahead of a class)",
+                    file=sys.stderr,
+                )
+                self.told = True
             if self.depth == 0 and self.bar is None and sys.stderr.isatty():
-                if not self.told:
-                    print(
-                        "note: compiling the engine for this machine, once (later runs load it; "
-                        "`sandbox warmup` does it ahead of a class)",
-                        file=sys.stderr,
-                    )
-                    self.told = True
                 from tqdm import tqdm
 
                 self.bar = tqdm(total=self.EXPECTED, unit=" kernels", leave=False, file=sys.stderr)
