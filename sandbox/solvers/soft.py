@@ -85,23 +85,21 @@ def with_fixed(c) -> bool:
     return c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0
 
 
-@njit
-def anchor(c, p, side: int, shapes, bodies):
-    """The point that the separation of contact point ``p`` follows on side ``side`` (0: a,
-    1: b), in that body's frame about its centre of mass (m), and where it is now relative to
-    the centre of mass, in the world (m). On a polygon it is the contact point itself
-    (``local_a``, ``local_b``), fixed to the body; on a circle it is the circle's centre: the
-    surface point facing the normal is the centre less the radius along it however the circle
-    turns, where a spinning ball's material point would swing off the contact by
-    r (1 - cos dphi) (a 5 cm bullet sliding down a wall at 330 rad/s: 3 cm into the wall)."""
-    shape = shapes[c["shape_b"] if side else c["shape_a"]]
-    body = bodies[c["b"] if side else c["a"]]
+@njit(inline="always")
+def anchor(shape, body, local, point):
+    """The point that a contact point's separation follows on one side: in that body's frame
+    about its centre of mass (m), and where it is now relative to the centre of mass, in the
+    world (m). On a polygon it is the contact point itself (``local``: ``local_a`` or
+    ``local_b``; ``point``, where the narrowphase found it), fixed to the body; on a circle it
+    is the circle's centre: the surface point facing the normal is the centre less the radius
+    along it however the circle turns, where a spinning ball's material point would swing off
+    the contact by r (1 - cos dphi) (a 5 cm bullet sliding down a wall at 330 rad/s: 3 cm into
+    the wall)."""
     if shape["kind"] == CIRCLE:
-        local = shape["center"]
-        x, y = rotate(body["cs"][0], body["cs"][1], local[0], local[1])
-        return local[0], local[1], x, y
-    local = p["local_b"] if side else p["local_a"]
-    return local[0], local[1], p["point"][0] - body["com"][0], p["point"][1] - body["com"][1]
+        centre = shape["center"]
+        x, y = rotate(body["cs"][0], body["cs"][1], centre[0], centre[1])
+        return centre[0], centre[1], x, y
+    return local[0], local[1], point[0] - body["com"][0], point[1] - body["com"][1]
 
 
 @njit
@@ -124,10 +122,14 @@ def prepare_soft(contacts, k: int, shapes, bodies, context) -> None:
         c["soft_bias_rate"], c["soft_mass_scale"] = rate, mass_scale
         c["soft_impulse_scale"] = impulse_scale
         nx, ny = c["normal"][0], c["normal"][1]
+        shape_a, shape_b = shapes[c["shape_a"]], shapes[c["shape_b"]]
+        body_a, body_b = bodies[c["a"]], bodies[c["b"]]
         for j in range(c["count"]):
             p = c["points"][j]
-            p["anchor_a"][0], p["anchor_a"][1], rax, ray = anchor(c, p, 0, shapes, bodies)
-            p["anchor_b"][0], p["anchor_b"][1], rbx, rby = anchor(c, p, 1, shapes, bodies)
+            ax, ay, rax, ray = anchor(shape_a, body_a, p["local_a"], p["point"])
+            bx, by, rbx, rby = anchor(shape_b, body_b, p["local_b"], p["point"])
+            p["anchor_a"][0], p["anchor_a"][1] = ax, ay
+            p["anchor_b"][0], p["anchor_b"][1] = bx, by
             p["base_separation"] = -p["depth"] - ((rbx - rax) * nx + (rby - ray) * ny)
             p["separation"] = separation_now(c, p, bodies)  # what the first solve pass needs
 
