@@ -26,7 +26,8 @@ MAX_TURN = 0.15
 def solve_joint_positions_together(joints, bodies) -> float:
     """The position stage's pass over the joints, solved together: limits swept (as
     :func:`~sandbox.joints.pivot.solve_pivot_position`), then every point row at once, the
-    position twin of :func:`solve_joints_direct`: K Delta = -C, K at the arms now, C the
+    position twin of :func:`~sandbox.joints.direct.solve_joints_direct`: K Delta = -C, K at the
+    arms now, C the
     anchors' gap (a pivot's (c_b + r_b) - (c_a + r_a), a pin's |p_b - p_a| - L along the rod,
     at most ``MAX_LINEAR_CORRECTION``), and each body moved by its share.
 
