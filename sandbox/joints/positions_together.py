@@ -27,9 +27,8 @@ def solve_joint_positions_together(joints, bodies) -> float:
     """The position stage's pass over the joints, solved together: limits swept (as
     :func:`~sandbox.joints.pivot.solve_pivot_position`), then every point row at once, the
     position twin of :func:`~sandbox.joints.direct.solve_joints_direct`: K Delta = -C, K at the
-    arms now, C the
-    anchors' gap (a pivot's (c_b + r_b) - (c_a + r_a), a pin's |p_b - p_a| - L along the rod,
-    at most ``MAX_LINEAR_CORRECTION``), and each body moved by its share.
+    arms now, C the anchors' gap (a pivot's (c_b + r_b) - (c_a + r_a), a pin's |p_b - p_a| - L
+    along the rod, at most ``MAX_LINEAR_CORRECTION``), and each body moved by its share.
 
     Swept one joint at a time, a light chain passes a heavy ball's pull on as slowly as the
     velocity sweeps do, and three passes left a 10-link chain under a ball of 100 links 7 to
