@@ -58,7 +58,6 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     for key, default in SOFT_DEFAULTS:
         ctx[key] = getattr(s, key, default)
     ctx["joint_solver"] = JOINT_SOLVERS.index(getattr(s, "joint_solver", "auto"))
-    ctx["soft"] = s.solver == "soft"
     ctx["diverged"] = -1
     ctx["energy_limit"] = np.inf  # set by the world for a closed system (sandbox.energy_growth)
     ctx["awake"] = -1  # sleep: not known until a step has run

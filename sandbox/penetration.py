@@ -31,7 +31,7 @@ import numpy as np
 
 from sandbox.jit import njit
 from sandbox.joints.positions_together import solve_joint_positions_together
-from sandbox.joints.solve import soft_joint_plan, solve_joint_positions
+from sandbox.joints.solve import solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, rotate
 from sandbox.orientation import turn_bodies
 from sandbox.solvers.iterative import visit
@@ -300,12 +300,17 @@ def rebound(contacts, k: int, bodies) -> None:
 
 
 @njit
-def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
-    """The position stage every rigid solver shares: the rebound, then up to
+def fix_positions(
+    contacts, k: int, joints, bodies, rot, context, joints_together: bool = False
+) -> float:
+    """The position stage every solver shares: the rebound, then up to
     ``position_iterations`` passes of the penetration fix, each followed by the joints'
-    position pass; then each body's orientation turned by what the passes turned. Nothing at
-    all when ``settings.position_correction`` is off. Returns the smallest separation the last
-    contact pass saw (m, < 0 overlapping)."""
+    position pass (swept, or solved together with ``joints_together``, as the soft step does
+    where its plan solves the relax pass together:
+    :func:`sandbox.joints.positions_together.solve_joint_positions_together`); then each
+    body's orientation turned by what the passes turned. Nothing at all when
+    ``settings.position_correction`` is off. Returns the smallest separation the last contact
+    pass saw (m, < 0 overlapping)."""
     ctx = context[0]
     worst = 0.0
     if not ctx["position_correction"]:
@@ -323,8 +328,6 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     layered = robust and needs_layers(contacts, k, bodies, triggers, gap)
     layering = position_order(contacts, k, bodies, layered, gap)
     bounds = (slop, push)
-    # the soft step solves its joints' positions together where it solves their relax pass so
-    together = ctx["soft"] and joints.shape[0] > 0 and soft_joint_plan(joints, bodies, context)[1]
     for _ in range(ctx["position_iterations"]):
         if method == IMPULSE:
             worst, moved = position_impulses(
@@ -337,7 +340,7 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
             if not moved:
                 break  # nothing moved: another pass would see the very same separations
             continue
-        if together:
+        if joints_together:
             joint_error = solve_joint_positions_together(joints, bodies)
         else:
             joint_error = solve_joint_positions(joints, bodies)

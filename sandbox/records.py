@@ -275,7 +275,6 @@ CONTEXT = np.dtype(
         ("joint_hertz", F8),
         ("joint_damping_ratio", F8),
         ("joint_solver", I8),  # soft step: index into sandbox.settings.JOINT_SOLVERS
-        ("soft", np.bool_),  # the soft step runs (solver: soft)
         ("max_push_speed", F8),
         ("hold_ratio", F8),  # soft step: hold a lower body under one this many times heavier
         ("sleep", np.bool_),  # sleeping islands on

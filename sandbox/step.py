@@ -251,16 +251,16 @@ def fast_step(
 
 
 @njit
-def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work) -> None:
+def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work, plan) -> None:
     """The soft step's substeps (:mod:`sandbox.solvers.soft`; Box2D v3's ``b2SolverStep``):
     each integrates the velocities over h = dt / substeps, warm starts, solves the joints (as
-    :func:`~sandbox.joints.solve.soft_joint_plan` decided once for the step) and the contacts
-    with the soft bias, moves the bodies, and relaxes (solves again without bias)."""
+    ``plan``, :func:`~sandbox.joints.solve.soft_joint_plan`, decided once for the step) and
+    the contacts with the soft bias, moves the bodies, and relaxes (solves again without
+    bias)."""
     bodies, shapes, vertices, joints, _ = model
     ctx = context[0]
     h = ctx["dt"] / ctx["substeps"]
     joint_soft = softness(ctx["joint_hertz"], ctx["joint_damping_ratio"], h)
-    plan = soft_joint_plan(joints, bodies, context)
     order = soft_order(contacts, k)
     stopped = np.zeros(bodies.shape[0] if ccd else 0, dtype=np.bool_)
     for _ in range(ctx["substeps"]):
@@ -309,8 +309,9 @@ def soft_step(
     if k < 0:
         return k
     begin_soft(contacts, k, previous, model, context)
-    soft_substeps(contacts, k, model, rot, context, False, work)
-    fix_positions(contacts, k, joints, bodies, rot, context)
+    plan = soft_joint_plan(joints, bodies, context)
+    soft_substeps(contacts, k, model, rot, context, False, work, plan)
+    fix_positions(contacts, k, joints, bodies, rot, context, plan[1])
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
     return finish_step(contacts, k, joints, bodies, context)
 
@@ -444,8 +445,9 @@ def staged_soft(world, found, a, clock) -> int:
     model = (a.bodies, a.shapes, a.vertices, a.joints, a.generators)
     begin_soft(contacts, k, previous, model, a.context)
     clock.lap("prepare_contacts")
-    soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd, a.work)
-    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
+    plan = soft_joint_plan(a.joints, a.bodies, a.context)
+    soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd, a.work, plan)
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context, plan[1])
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
     clock.lap("restitution")
