@@ -17,7 +17,8 @@ The stages, in order, each a function named after what it does:
 9. ``integrate_positions``   p += dp + (v - v_free) dt; continuous collision may shorten it
                              (:mod:`sandbox.toi`)
 10. ``fix_positions``        the penetration fix and the joints' position pass
-                             (:mod:`sandbox.penetration`)
+                             (:mod:`sandbox.penetration`); continuous collision cuts its
+                             moves of ccd bodies (:mod:`sandbox.ccd_positions`)
 11. ``store_impulses``       this step's contacts become the next step's warm-start source; a
                              body whose state stopped being finite is reported
 
@@ -39,6 +40,7 @@ import numpy as np
 
 from sandbox.broadphase.aabb import shape_box, sort_pairs_into
 from sandbox.broadphase.sap import sweep
+from sandbox.ccd_positions import poses, sweep_position_moves
 from sandbox.energy_growth import closed_energy, fastest_body
 from sandbox.integrators import (
     clear_forces,
@@ -429,7 +431,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         limit_ccd_motion(a.bodies, a.shapes, a.vertices, a.context)
     move_bodies(a.bodies, a.rot, a.context)
     clock.lap("integrate_positions")
-    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
+    position_stage(world, a, (contacts, k))
     clock.lap("fix_positions")
     status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
@@ -447,7 +449,7 @@ def staged_soft(world, found, a, clock) -> int:
     clock.lap("prepare_contacts")
     plan = soft_joint_plan(a.joints, a.bodies, a.context)
     soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd, a.work, plan)
-    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context, plan[1])
+    position_stage(world, a, (contacts, k), plan[1])
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
     clock.lap("restitution")
@@ -456,3 +458,15 @@ def staged_soft(world, found, a, clock) -> int:
     if isinstance(clock, StageTimer):
         clock.steps += 1
     return status
+
+
+def position_stage(world, a, found, *joints_together) -> None:
+    """The position stage of the staged steps (:func:`~sandbox.penetration.fix_positions`;
+    ``joints_together`` as the soft step plans it), with its moves of the ``ccd`` bodies swept
+    when the world has any (:func:`~sandbox.ccd_positions.sweep_position_moves`)."""
+    contacts, k = found
+    before = poses(a.bodies) if world.has_ccd else None
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context, *joints_together)
+    if before is not None:
+        geometry = (a.bodies, a.rot, a.shapes, a.vertices, a.context)
+        sweep_position_moves(*geometry, before, (contacts, k, a.joints))

@@ -315,9 +315,10 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance,
     narrowphase ran once, before the substeps, so such a pair (unless its bodies share a
     joint: joined bodies do not collide) is left to the solver only when it has a contact
     among the first ``k``; otherwise (stopped at its impact by an earlier substep) its ccd
-    body stays where it is (t = 0) until the next step's narrowphase finds the contact; so
-    does one whose core began within reach (deep in the other shape: the position stage
-    takes it out after the substeps).
+    body stays where it is (t = 0) until the next step's narrowphase finds the contact. A
+    pair whose core began within reach (deep in the other shape) is left to the solver and
+    the position stage, in both steps: held still instead, a heavy ball deep in a light body
+    stood still while gravity added g dt to its velocity every step (to 17.6 m/s in 2 s).
     """
     frac = np.ones(bodies.shape[0])
     for q in range(pairs.shape[0]):
@@ -337,10 +338,10 @@ def ccd_fractions(bodies, shapes, vertices, pairs, target_separation, tolerance,
                 t = core_impact(core_of(shape_i), motion_i, shape_j, motion_j, limits, t)
             if bodies[bj]["ccd"]:
                 t = core_impact(core_of(shape_j), motion_j, shape_i, motion_i, limits, t)
-            if found is None:  # the step's own narrowphase found these shapes touching
-                if t <= 0.0:
-                    continue  # a core already that close: deep overlap, the position stage's
-            elif not in_contact(found[0], found[1], i, j):
+            touching = found is None or in_contact(found[0], found[1], i, j)
+            if t <= 0.0 and touching:
+                continue  # a core already that close: deep overlap, the position stage's
+            if not touching:
                 t = 0.0
         for b in (bi, bj):
             if bodies[b]["ccd"] and t < frac[b]:
