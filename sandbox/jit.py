@@ -18,7 +18,15 @@ from sandbox.compile_cache import CACHE_FOLDER, take_cache_note
 
 JIT_ENABLED: bool = os.environ.get("SANDBOX_JIT", "1") != "0"
 
-__all__ = ["CACHE_FOLDER", "JIT_ENABLED", "bound", "entry", "njit", "take_cache_note"]
+__all__ = [
+    "CACHE_FOLDER",
+    "JIT_ENABLED",
+    "bound",
+    "entry",
+    "njit",
+    "quiet_compiles",
+    "take_cache_note",
+]
 
 
 if JIT_ENABLED:
@@ -82,6 +90,13 @@ else:
         if args and callable(args[0]) and len(args) == 1:
             return args[0]
         return lambda f: f
+
+
+def quiet_compiles() -> None:
+    """No compile notice nor bar in this process (``sandbox warmup --quiet``)."""
+    if JIT_ENABLED:
+        NOTICE.told = True
+        numba.core.event.unregister("numba:compile", NOTICE)
 
 
 def entry(function, *args):

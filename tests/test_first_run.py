@@ -172,3 +172,20 @@ def test_every_bundled_scene_at_the_default_steps_runs_uncompiled(
     monkeypatch.setattr(compile_cache, "has_kernel", lambda name: False)
     first_run.choose_engine_speed({"bodies": [{}] * bodies}, steps)
     assert (os.environ.pop("SANDBOX_JIT", None) == "0") is plain
+
+
+@pytest.mark.parametrize("quiet", [False, True])
+def test_a_quiet_warmup_prints_no_compile_notice(quiet):
+    # `sandbox warmup --quiet` prints nothing, the compile notice included: a function
+    # compiled after quiet_compiles() says nothing; without it, the line
+    code = (
+        "from sandbox import jit\n"
+        f"if {quiet}: jit.quiet_compiles()\n"
+        "jit.njit(cache=False)(lambda x: x + 1)(1)\n"
+    )
+    env = {**os.environ, "SANDBOX_JIT": "1"}
+    done = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
+    )
+    assert ("compiling the engine" in done.stderr) is not quiet
+    assert done.stderr.strip() == "" or not quiet

@@ -49,6 +49,11 @@ def run(args: argparse.Namespace) -> int:
     """Compile every kernel, saying what is ready."""
     from sandbox.warmup import warm_up, where
 
+    if args.quiet:
+        from sandbox.jit import quiet_compiles
+
+        quiet_compiles()
+
     def report(line: str) -> None:
         if not args.quiet:
             print(line, flush=True)
