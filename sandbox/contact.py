@@ -56,7 +56,9 @@ class ContactBuffers:
         for s in range(2):
             self.release(s)
         self.sets = sets
-        self.pairs = np.zeros((2, capacity, 2), dtype=np.int64)
+        pairs = np.zeros((2, capacity, 2), dtype=np.int64)
+        pairs[:, : self.capacity] = self.pairs  # the kept pairs stay (sandbox.step.find_pairs)
+        self.pairs = pairs
         self.capacity = capacity
 
     def release(self, s: int) -> bool:

@@ -30,6 +30,7 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     (kept as they are: the broadphase's sort axis and the contact sets' bookkeeping)."""
     s = settings
     ctx["dt"], ctx["inv_dt"] = dt, 1.0 / dt
+    ctx["pairs_kept"] = False  # a new margin or flags: sweep the boxes again
     ctx["gravity"] = gravity
     ctx["orientation"] = ORIENTATIONS[s.orientation]
     ctx["integrator"] = INTEGRATORS[s.integrator]

@@ -289,6 +289,8 @@ CONTEXT = np.dtype(
         ("sweep_direction", I8),  # sweep and prune: the direction PROXY["order"] is sorted
         # along (sandbox.broadphase.sap.DIRECTIONS), -1: none yet
         ("sweep_recount", I8),  # steps left before the directions are compared again
+        ("pairs_kept", np.bool_),  # sweep and prune: pairs[1] holds the pairs of the boxes in
+        # PROXY["aabb"], found with FAT_MARGIN to spare (sandbox.step.find_pairs)
         ("contact_set", I8),  # which of the two contact sets holds the last step's contacts
         ("contact_count", I8, 2),  # how many contacts each set holds
         ("need", I8),  # > 0: the pair buffer needs this many rows (nothing was changed)

@@ -99,6 +99,10 @@ STAGES = (
 # kinematic; sleeping with sleeping. A moving kinematic body still meets a sleeping one (to wake it)
 FIXED_FLAGS = (0, 3, 3, 1)  # by kind: DYNAMIC, STATIC, KINEMATIC (standing still), SLEEPING
 MOVING_KINEMATIC = 2
+# m: sweep and prune sweeps boxes this much larger than the contact margin needs and keeps its
+# pairs until a shape leaves its box (Box2D's aabbMargin is 0.1 m). Measured on the pyramid of
+# base 40 under soft, 300 steps: 12 sweeps at 1 cm, 6 at 2 cm, 2 at 5 cm
+FAT_MARGIN = 0.02
 
 
 @njit
@@ -119,10 +123,21 @@ def place_proxies(shapes, vertices, bodies, margin: float, proxies) -> None:
 def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     """Stage 1 by sweep and prune, keeping the sweep order from step to step: the sorted pair
     list into ``pairs[1]``. Returns the number of pairs, or minus the rows needed when ``pairs``
-    is too small (nothing else changed)."""
+    is too small (nothing else changed).
+
+    The boxes are swept grown by :data:`FAT_MARGIN` more than the contact margin, and last
+    step's pairs are kept while every shape's box stays within the box it was swept with
+    (:func:`boxes_hold`, as Box2D's fat AABBs): any two shapes whose boxes overlap now had
+    overlapping swept boxes, so the kept pairs hold all of them, and the narrowphase leaves
+    out the rest (out of reach). A pile at rest sweeps again only when something moved."""
     ctx = context[0]
     m = shapes.shape[0]
-    place_proxies(shapes, vertices, bodies, ctx["contact_margin"], proxies)
+    margin = ctx["contact_margin"]
+    if ctx["pairs_kept"] and boxes_hold(shapes, vertices, bodies, margin, proxies):
+        ctx["pair_tests"] = 0
+        return ctx["pairs"]
+    ctx["pairs_kept"] = False
+    place_proxies(shapes, vertices, bodies, margin + FAT_MARGIN, proxies)
     d, recount, k, tests = sweep(proxies, ctx["sweep_direction"], ctx["sweep_recount"], pairs[0])
     ctx["sweep_direction"], ctx["sweep_recount"] = d, recount
     ctx["pair_tests"] = tests
@@ -130,7 +145,25 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
         return -k
     sort_pairs_into(pairs[0], k, m, np.empty(m + 1, dtype=np.int64), pairs[1])
     ctx["pairs"] = k
+    ctx["pairs_kept"] = True
     return k
+
+
+@njit
+def boxes_hold(shapes, vertices, bodies, margin: float, proxies) -> bool:
+    """Whether every shape's box grown by ``margin`` (m) still lies within its swept box
+    (``PROXY["aabb"]``), on the same body with the same broadphase flags."""
+    for k in range(shapes.shape[0]):
+        b = shapes[k]["body"]
+        body, p = bodies[b], proxies[k]
+        fixed = MOVING_KINEMATIC if moving_kinematic(body) else FIXED_FLAGS[body["kind"]]
+        if p["body"] != b or p["fixed"] != fixed:
+            return False
+        x0, y0, x1, y1 = shape_box(shapes[k], vertices, body, margin)
+        a = p["aabb"]
+        if x0 < a[0] or y0 < a[1] or x1 > a[2] or y1 > a[3]:
+            return False
+    return True
 
 
 @njit
@@ -377,6 +410,7 @@ def staged_pairs(world, a, ctx) -> int:
         np.ascontiguousarray(proxies["body"]),
     )
     ctx["pair_tests"] = tests
+    ctx["pairs_kept"] = False  # boxes without the spare margin: sweep and prune sweeps again
     k = len(found)
     if k > a.buffers.pairs.shape[1]:
         return -k

@@ -170,6 +170,7 @@ class World(Building, Measures):
             b = self._buffers = ContactBuffers(len(g))
             ctx = self.context[0]
             ctx["sweep_direction"] = -1
+            ctx["pairs_kept"] = False
             ctx["contact_count"][0] = ctx["contact_count"][1] = 0
         return b
 
@@ -376,7 +377,10 @@ class World(Building, Measures):
     @property
     def stats(self) -> dict:
         """Counters from the last step or :meth:`find_contacts`: ``pair_tests``, ``pairs``,
-        ``contacts``, ``contact_points``, ``warm_started_points`` (and ``shock_layers``; and
+        ``contacts``, ``contact_points``, ``warm_started_points`` (sweep and prune keeps its
+        pairs while no shape leaves the box it was swept with, 2 cm larger than the contact
+        margin needs: ``pair_tests`` is 0 in such a step, and ``pairs`` counts the kept ones,
+        those within that spare margin too; and ``shock_layers``; and
         ``sweeps``, the velocity sweeps of the iterative and shock solvers: ``iterations``,
         more at a large dt, where they go on until the contacts hold)."""
         if self._found_stats is not None:
