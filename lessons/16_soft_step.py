@@ -906,7 +906,7 @@ for name, view in views.items():
 # What the runs show (this engine's solvers at 10 iterations, pymunk at 10):
 #
 # - **pyramid of 40**: pairwise collapses (the top box is 19 m down after 2 s); shock
-#   propagation holds it (its top box even rose 1.8 mm in 2 s); iterative sags 13.0 cm and
+#   propagation holds it (its top box even rose 3.8 mm in 2 s); iterative sags 13.0 cm and
 #   stays there; pymunk 23.7 cm after 3 s, still sinking. The soft step sags 12.3 cm, about as
 #   much as the iterative solver, and stays there too (between 123.2 and 123.3 mm over the
 #   last 5 s); its top box moved 3.0 cm sideways in 10 s, all of it while the pyramid settled

@@ -107,7 +107,9 @@ class Manifolds:
 
     @property
     def tangent_impulse(self) -> np.ndarray:
-        return self.records["points"]["tangent_impulse"]
+        """Per point: the solver's friction impulse plus the shock pass's (N s; a new array)."""
+        points = self.records["points"]
+        return points["tangent_impulse"] + points["bounce_tangent"]
 
     def select(self, mask) -> Manifolds:
         """The manifolds picked by a boolean mask or an index array (copies)."""

@@ -115,6 +115,7 @@ CONTACT_POINT = np.dtype(
         ("anchor_a", V2),  # soft step: the point a's separation follows, a's body frame (m):
         ("anchor_b", V2),  # local_a, or a circle's centre (a circle turns under its contact)
         ("bounce_impulse", F8),  # what the passes after the sweeps added (N s), not warm-started
+        ("bounce_tangent", F8),  # and their friction (N s, the shock pass's), not warm-started
     ],
     align=True,
 )

@@ -16,7 +16,8 @@ Per contact point (:data:`sandbox.records.CONTACT_POINT`), as box2d-lite and Box
   prepare stage runs before the velocities are integrated, as in Box2D), for restitution;
 - ``normal_impulse``, ``tangent_impulse``: the accumulated impulses (N s),
   ``max_normal_impulse`` the largest normal impulse of the step, ``bounce_impulse`` the
-  restitution pass's.
+  restitution pass's (and the shock pass's pushes), ``bounce_tangent`` the shock pass's
+  friction: neither is warm-started.
 
 Conventions: the normal n points from body a to body b; v_r is b's contact point's velocity
 seen from a's, so v_r . n < 0 means approaching.
@@ -155,7 +156,7 @@ def prepare_contacts(contacts, k: int, bodies, beta: float, context, block: bool
         for j in range(2):
             p = points[j]
             p["normal_impulse"] = p["tangent_impulse"] = 0.0
-            p["max_normal_impulse"] = p["bounce_impulse"] = 0.0
+            p["max_normal_impulse"] = p["bounce_impulse"] = p["bounce_tangent"] = 0.0
             if j < count:
                 prepare_point(c, p, bodies, inv_dt, beta, slop)
         if block:
