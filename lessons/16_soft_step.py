@@ -876,7 +876,7 @@ axes[0].set(xlabel="t (s)", ylabel="top box drop (mm)",
             title=f"pyramid of base {BASE}: top box drop")  # fmt: skip
 for ax, name in zip(axes[1:], ("chain", "heavy chain"), strict=True):
     ax.set(yscale="log", xlabel="t (s)", ylabel="worst link stretch (mm)",
-           title=f"{name}: worst joint separation (floor 0.01 mm)")  # fmt: skip
+           title=f"{name}: worst joint separation\n(log axis floored at 0.01 mm)")  # fmt: skip
     plain_log(ax, "y")
 for ax in axes:
     ax.grid(alpha=0.3)
