@@ -16,7 +16,7 @@ import numpy as np
 
 from sandbox.jit import njit
 from sandbox.orientation import turn_body
-from sandbox.toi import LINEAR_SLOP, ccd_fractions, swept_pairs
+from sandbox.toi import impact_target, limit_ccd_motion
 
 
 @njit
@@ -34,13 +34,11 @@ def sweep_position_moves(bodies, rot, shapes, vertices, context, before, found) 
     """Cut each ``ccd`` body's move by the position stage, from pose ``before``
     (:func:`poses`, taken before the stage) to where the stage left it, at its first impact:
     ``motion`` and ``motion_turn`` become the stage's move, other bodies stand still (they
-    have moved already), and :func:`~sandbox.toi.ccd_fractions` (with ``found`` = this
-    step's (contacts, k, joints)) gives each body the fraction it may keep. Nothing at all
-    unless some ``ccd`` body moved further than the impact target, a quarter of the contact
-    margin: a smaller move cannot cross a face the narrowphase would not see next step."""
-    ctx = context[0]
-    margin = ctx["contact_margin"]
-    target = 0.25 * margin if margin > 0.0 else LINEAR_SLOP
+    have moved already), and :func:`~sandbox.toi.limit_ccd_motion` (with ``found`` = this
+    step's (contacts, k, joints)) shortens it as it does the step's own motion. Nothing at
+    all unless some ``ccd`` body moved further than the impact target: a smaller move cannot
+    cross a face the narrowphase would not see next step."""
+    target = impact_target(context)
     after = poses(bodies)
     far = False
     for i in range(bodies.shape[0]):
@@ -60,17 +58,17 @@ def sweep_position_moves(bodies, rot, shapes, vertices, context, before, found) 
         if bodies[i]["ccd"]:
             b = bodies[i]
             b["com"][0], b["com"][1], b["angle"] = before[i, 0], before[i, 1], before[i, 2]
-    pairs = swept_pairs(bodies, shapes)
-    frac = ccd_fractions(bodies, shapes, vertices, pairs, target, 0.25 * target, found)
-    kind, renormalise = ctx["orientation"], ctx["renormalise"]
+    frac = limit_ccd_motion(bodies, shapes, vertices, context, found)
+    kind, renormalise = context[0]["orientation"], context[0]["renormalise"]
     for i in range(bodies.shape[0]):
         b = bodies[i]
         if not b["ccd"]:
             continue
-        b["com"][0], b["com"][1], b["angle"] = after[i, 0], after[i, 1], after[i, 2]
-        if frac[i] < 1.0:  # back by the part of the move past the impact
-            back = 1.0 - frac[i]
-            b["com"][0] -= back * b["motion"][0]
-            b["com"][1] -= back * b["motion"][1]
-            if b["motion_turn"] != 0.0:
-                turn_body(bodies, rot, i, kind, -back * b["motion_turn"], renormalise)
+        b["angle"] = after[i, 2]
+        if frac[i] == 1.0:  # the whole move, exactly as the stage left it
+            b["com"][0], b["com"][1] = after[i, 0], after[i, 1]
+            continue
+        b["com"][0], b["com"][1] = before[i, 0] + b["motion"][0], before[i, 1] + b["motion"][1]
+        turn = after[i, 2] - before[i, 2]
+        if turn != 0.0:  # back by the part of the turn past the impact
+            turn_body(bodies, rot, i, kind, -(1.0 - frac[i]) * turn, renormalise)

@@ -116,7 +116,13 @@ def place_proxies(shapes, vertices, bodies, margin: float, proxies) -> None:
         a = p["aabb"]
         a[0], a[1], a[2], a[3] = shape_box(shapes[k], vertices, body, margin)
         p["body"] = b
-        p["fixed"] = MOVING_KINEMATIC if moving_kinematic(body) else FIXED_FLAGS[body["kind"]]
+        p["fixed"] = broadphase_flags(body)
+
+
+@njit
+def broadphase_flags(body) -> int:
+    """A body's broadphase filter bits (:data:`FIXED_FLAGS`; a moving kinematic body's own)."""
+    return MOVING_KINEMATIC if moving_kinematic(body) else FIXED_FLAGS[body["kind"]]
 
 
 @njit
@@ -156,8 +162,7 @@ def boxes_hold(shapes, vertices, bodies, margin: float, proxies) -> bool:
     for k in range(shapes.shape[0]):
         b = shapes[k]["body"]
         body, p = bodies[b], proxies[k]
-        fixed = MOVING_KINEMATIC if moving_kinematic(body) else FIXED_FLAGS[body["kind"]]
-        if p["body"] != b or p["fixed"] != fixed:
+        if p["body"] != b or p["fixed"] != broadphase_flags(body):
             return False
         x0, y0, x1, y1 = shape_box(shapes[k], vertices, body, margin)
         a = p["aabb"]
