@@ -8,7 +8,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 DEV_STAMP := $(VENV)/.installed-dev
 
-.PHONY: lessons notebook test test-bounds lint format docs bench clean
+.PHONY: lessons notebook test test-suite test-bounds lint format docs bench clean
 
 # the project with what the tests and `make lessons` need (the `test` extra)
 $(STAMP): pyproject.toml setup.py
@@ -34,10 +34,15 @@ $(VENV)/.installed-notebook: $(STAMP)
 	$(BIN)/python -m pip install -q -e '.[test,notebook]'
 	touch $(VENV)/.installed-notebook
 
+# the suite and the bounds-checked world tests side by side, one per core (each target's output
+# shows when it ends): together they take about as long as the suite alone
 test: $(STAMP)
+	@echo "the test suite and the bounds-checked world tests, side by side (a few minutes)"
+	@$(MAKE) --no-print-directory -j2 --output-sync=target test-suite test-bounds
+
+test-suite: $(STAMP)
 	$(BIN)/sandbox warmup --quiet
 	$(BIN)/python -m pytest -q
-	$(MAKE) test-bounds
 
 # the world tests again with numba's array bounds checks on (its own compile cache): an
 # out-of-bounds index in a kernel fails a test instead of corrupting memory
