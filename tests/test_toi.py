@@ -313,16 +313,7 @@ def test_a_ccd_body_is_not_stopped_again_and_again_a_hair_short_of_its_target():
 
     scene = json.loads((Path(__file__).parent / "data" / "shock_ccd_hover.json").read_text())
     world = load_scene(scene)
-
-    def energy() -> float:
-        return sum(
-            0.5 * b.mass * (b.velocity[0] ** 2 + b.velocity[1] ** 2)
-            + 0.5 * b.moment * b.angular_velocity**2
-            + 9.81 * b.mass * b.position[1]
-            for b in world.bodies
-            if b.type == "dynamic"
-        )
-
+    energy = world.energy  # kinetic + gravitational (J)
     start, most = energy(), 0.0
     for _ in range(240):
         world.step()
