@@ -35,7 +35,7 @@ MAX_ITERATIONS = 64  # conservative advancement steps before giving up (the last
 # stops within one tolerance of the target, and anything that moves the pair a hair apart
 # afterwards (the position stage) would otherwise have it stopped again next step at once, and
 # the step after, its velocity growing under gravity while it stands still (a random shock
-# scene: 2.5 times its energy in 4 s; tests/test_toi.py)
+# scene: 2.56 times its energy within 5 s; tests/test_toi.py)
 START_BAND = 2.0
 
 
