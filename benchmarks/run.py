@@ -21,7 +21,8 @@ shows by default: time spent waiting for a core under load does not count) and w
 more, the table must show wall time.
 
 Then: frames per second of GIF output for 500 bodies at 480 px (``bench_render.py``), and the
-wall time of every lesson (``sandbox lessons`` in a subprocess; skipped with ``--quick``).
+wall time of every lesson (``sandbox lessons`` in a subprocess; skipped with ``--quick``), and
+with ``--cold-lessons`` of all lessons from an empty compile cache.
 
 Writes ``benchmarks/results.csv`` (both clocks) and ``benchmarks/results.png`` (ratios per
 scene, a line at 1), prints the table, and puts it into ``benchmarks/README.md`` between the
@@ -39,6 +40,7 @@ import platform
 import re
 import subprocess
 import sys
+import tempfile
 import time
 import traceback
 from dataclasses import dataclass
@@ -228,24 +230,35 @@ def bench_gif() -> dict:
     return row("render_gif_500", bodies=500, steps=120, value=f"{fps:.1f}", unit="frames/s")
 
 
-def bench_lessons() -> list[dict]:
-    """Wall time of ``sandbox lessons`` (all of them, one subprocess), total and per lesson."""
-    start = time.perf_counter()
-    proc = subprocess.run(
-        [sys.executable, "-m", "sandbox", "lessons"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-    )
-    total = time.perf_counter() - start
+def bench_lessons(cold: bool = False) -> list[dict]:
+    """Wall time of ``sandbox lessons`` (all of them, one subprocess), total and per lesson,
+    with the compile cache as it is (warm after the warm-up); ``cold``: only the total, from an
+    empty compile cache (a temporary ``NUMBA_CACHE_DIR``), the first run of a class."""
+    env = dict(os.environ)
+    with tempfile.TemporaryDirectory() as cache:
+        if cold:
+            env["NUMBA_CACHE_DIR"] = cache
+        start = time.perf_counter()
+        proc = subprocess.run(
+            [sys.executable, "-m", "sandbox", "lessons"],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            env=env,
+        )
+        total = time.perf_counter() - start
     rows = []
     for match in re.finditer(r"^== (\S+): (.+?) in ([0-9.]+) s$", proc.stdout, re.MULTILINE):
         name, status, seconds = match.groups()
         status = "ok" if status == "ok" else f"error: {status}"
-        rows.append(row(f"lesson {name}", value=seconds, unit="s", status=status))
+        if not cold:
+            rows.append(row(f"lesson {name}", value=seconds, unit="s", status=status))
     status = "ok" if proc.returncode == 0 else f"error: exit {proc.returncode}"
     if proc.returncode:
         print("\n".join(proc.stderr.splitlines()[-20:]), file=sys.stderr)
+    if cold:
+        rows.append(row("lessons_total_cold_cache", value=f"{total:.1f}", unit="s", status=status))
+        return rows
     rows.append(row("lessons_total", value=f"{total:.1f}", unit="s", status=status))
     return rows
 
@@ -374,6 +387,11 @@ def main(argv: list[str] | None = None) -> int:
         help="the time the table shows: cpu (the stepping thread's, default) or wall",
     )
     parser.add_argument("--no-readme", action="store_true", help="leave README.md as it is")
+    parser.add_argument(
+        "--cold-lessons",
+        action="store_true",
+        help="also time all lessons from an empty compile cache (about three minutes more)",
+    )
     args = parser.parse_args(argv)
 
     known = [c.name for c in CASES]
@@ -401,6 +419,8 @@ def main(argv: list[str] | None = None) -> int:
         rows.append(bench_gif())
         if not args.quick:
             rows.extend(bench_lessons())
+        if args.cold_lessons:
+            rows.extend(bench_lessons(cold=True))
 
     mode = f"{'quick' if args.quick else 'full'} run{' (--only)' if args.only else ''}"
     title = make_title(mode, args.clock)
