@@ -15,8 +15,8 @@ search over the contacts). Then:
 Within the shock pass each increment only pushes (>= 0, friction within mu times it). Its
 normal pushes and their friction are reported with the contact (``bounce_impulse`` and
 ``bounce_tangent``, which hold what the passes after the relaxation added) but not
-warm-started: one-sided pushes would not balance in the next step. Bodies not connected to the ground (a separate layer "infinity") are resolved with
-their normal masses.
+warm-started: one-sided pushes would not balance in the next step. Bodies not connected to
+the ground (a separate layer "infinity") are resolved with their normal masses.
 """
 
 from __future__ import annotations
