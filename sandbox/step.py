@@ -467,10 +467,10 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     clock.lap("restitution")
     plan_motion(a.bodies, ctx["dt"])
     if world.has_ccd:
-        limit_ccd_motion(a.bodies, a.shapes, a.vertices, a.context)
+        limit_ccd_motion(a.bodies, a.shapes, a.vertices, a.context, None)
     move_bodies(a.bodies, a.rot, a.context)
     clock.lap("integrate_positions")
-    position_stage(world, a, (contacts, k))
+    position_stage(world, a, (contacts, k), False)
     clock.lap("fix_positions")
     status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
@@ -499,13 +499,16 @@ def staged_soft(world, found, a, clock) -> int:
     return status
 
 
-def position_stage(world, a, found, *joints_together) -> None:
+def position_stage(world, a, found, joints_together: bool) -> None:
     """The position stage of the staged steps (:func:`~sandbox.penetration.fix_positions`;
-    ``joints_together`` as the soft step plans it), with its moves of the ``ccd`` bodies swept
-    when the world has any (:func:`~sandbox.ccd_positions.sweep_position_moves`)."""
+    ``joints_together`` as the soft step plans it, False in the rigid step), with its moves of
+    the ``ccd`` bodies swept when the world has any
+    (:func:`~sandbox.ccd_positions.sweep_position_moves`). Every argument is passed: with its
+    default left out, this call took numba's slow dispatch every step, 1.4 ms
+    (tests/test_dispatch.py)."""
     contacts, k = found
     before = poses(a.bodies) if world.has_ccd else None
-    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context, *joints_together)
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context, bool(joints_together))
     if before is not None:
         geometry = (a.bodies, a.rot, a.shapes, a.vertices, a.context)
         sweep_position_moves(*geometry, before, (contacts, k, a.joints))

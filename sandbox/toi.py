@@ -391,12 +391,14 @@ def in_contact(contacts, k: int, i: int, j: int) -> bool:
 
 
 @njit
-def limit_ccd_motion(bodies, shapes, vertices, context, found=None):
+def limit_ccd_motion(bodies, shapes, vertices, context, found):
     """Conservative advancement for the ``ccd`` bodies: each moves only up to its time of
     impact, a quarter of the contact margin short of touching (``motion`` and ``motion_turn``
     scaled in place); the next step's narrowphase then finds the contact (retroactive detection
     takes over). ``found``: in a substep of the soft step, this step's (contacts, k, joints)
-    (see :func:`ccd_fractions`). Returns each body's fraction."""
+    (see :func:`ccd_fractions`), else None (no default: the staged step passes every argument,
+    as a left-out one sent a call there through numba's slow dispatch, tests/test_dispatch.py).
+    Returns each body's fraction."""
     target = impact_target(context)
     pairs = swept_pairs(bodies, shapes)
     if pairs.shape[0] == 0:

@@ -159,7 +159,7 @@ def test_ccd_fractions_and_limit_motion():
     # centre goes down to 1.03 at the lowest, 0.07 of the 0.1 m, a fraction of 0.7
     assert abs(frac[2] - 0.7) <= 0.00125 / 0.1 + 1e-12
 
-    limit_ccd_motion(bodies, g.table, g.vertices, world.context)
+    limit_ccd_motion(bodies, g.table, g.vertices, world.context, None)
     step = bodies["motion"]
     np.testing.assert_allclose(step[[0, 3]], dp[[0, 3]], atol=0)
     np.testing.assert_allclose(step[2], frac[2] * dp[2], atol=0)
