@@ -10,10 +10,12 @@ For example, the code before a change in a second worktree against this one::
 Each round runs SCENE (a name from ``SCENES`` below, built from ``scenes.py``; a name ending
 in ``_soft``: that scene under ``solver: soft``; ``free_1000_verlet`` and ``free_1000_rk4``:
 ``free_1000`` with that integrator; ``chain_20_soft``, ``chain_100_soft``, ``heavy_chain_soft``:
-the soft step lesson's chains, 20 and 100 links, 10 links and a ball of 100 link masses) once with CHECKOUT_A's ``sandbox`` and once
-with CHECKOUT_B's, each in its own process (so each has its own compiled kernels, in its own
-compile cache under the checkout), alternating, and times N steps after 5 of warm-up: CPU
-time of the stepping thread per step. On a shared machine the time of one run moves by tens
+the soft step lesson's chains, 20 and 100 links, 10 links and a ball of 100 link masses;
+``rain_100__pairwise``, ``pyramid_20__shock``, ``rain_1000__grid`` and the like: that scene
+under another solver or broadphase, which the world steps stage by stage from Python) once
+with CHECKOUT_A's ``sandbox`` and once with CHECKOUT_B's, each in its own process (so each
+has its own compiled kernels, in its own compile cache under the checkout), alternating, and
+times N steps after 5 of warm-up: CPU time of the stepping thread per step. On a shared machine the time of one run moves by tens
 of percent; the median of the rounds' ratios B / A is what to read, with the smallest and
 the largest.
 """
@@ -49,17 +51,32 @@ def scene_named(name: str) -> dict:
         "chain_100": lambda: scenes.chain(100),
         "heavy_chain": lambda: scenes.chain(10, ball=100.0),
     }
-    base, soft, _ = name.partition("_soft")
-    spec = makers[base]()
-    if soft:  # the same scene under the soft step
-        spec.setdefault("settings", {})["solver"] = "soft"
+    base, _, variant = name.partition("__")
+    spec = makers[base.removesuffix("_soft")]()
+    settings = spec.setdefault("settings", {})
+    if base.endswith("_soft"):  # the same scene under the soft step
+        settings["solver"] = "soft"
+    if variant in SOLVER_VARIANTS:  # scene__pairwise, scene__shock: under that solver
+        settings["solver"] = variant
+    elif variant:  # scene__grid and the like: with that broadphase
+        settings["broadphase"] = variant
     return spec
+
+
+SOLVER_VARIANTS = ("pairwise", "shock", "iterative", "soft")
+BROADPHASE_VARIANTS = ("brute", "grid", "quadtree", "kdtree")
 
 
 SCENES = ("ballistic", "rain_100", "rain_1000", "rain_5000", "pyramid_20", "pyramid_40")
 SCENES += tuple(f"{name}_soft" for name in SCENES if name != "ballistic")
 SCENES += ("free_1000", "free_1000_verlet", "free_1000_rk4")
 SCENES += ("chain_20_soft", "chain_100_soft", "heavy_chain_soft")  # the joints of the soft step
+# any contact scene under another solver or broadphase (the staged path): rain_100__pairwise
+SCENES += tuple(
+    f"{name}__{variant}"
+    for name in ("rain_100", "rain_1000", "pyramid_20")
+    for variant in SOLVER_VARIANTS[:2] + BROADPHASE_VARIANTS
+)
 
 
 def time_here(name: str, steps: int) -> float:
