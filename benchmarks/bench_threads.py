@@ -63,7 +63,14 @@ import sandbox.step
 import scenes
 from sandbox.build import build_world
 from sandbox.jit import njit
-from sandbox.narrowphase import collide_into, pair_manifold, place_polygons
+from sandbox.narrowphase import (
+    collide_into,
+    collide_pair,
+    joined,
+    place_polygons,
+    within_reach,
+    write_manifold,
+)
 from sandbox.scene import validate_scene
 from sandbox.step import STAGES, StageTimer
 
@@ -82,10 +89,16 @@ def collide_slots(pairs, npairs, shapes, wp, bodies, joints, margin, contacts) -
     """Pair q's manifold into ``contacts[q]`` (count 0 when none), the pairs shared among
     numba's threads: each record is written by one thread only."""
     for q in numba.prange(npairs):
-        if not pair_manifold(
-            pairs[q, 0], pairs[q, 1], shapes, wp, bodies, joints, margin, contacts[q]
-        ):
-            contacts[q]["count"] = 0
+        contacts[q]["count"] = 0
+        i, j = pairs[q, 0], pairs[q, 1]  # the skips and the writing of collide_into
+        a, b = shapes[i]["body"], shapes[j]["body"]
+        if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
+            continue
+        if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
+            continue
+        manifold = collide_pair(i, j, shapes, wp, bodies, margin)
+        if manifold[0] > 0:
+            write_manifold(contacts[q], i, j, shapes, manifold)
 
 
 @njit

@@ -141,40 +141,47 @@ def collide_into(pairs, npairs, shapes, vertices, bodies, joints, margin, contac
     written in pair order into ``contacts`` (CONTACT records), at most one per pair; pairs of
     one body, of joined bodies or out of reach are skipped. Returns how many were written.
 
-    ``margin`` (m) keeps points with a gap up to ``margin`` (speculative contacts)."""
+    ``margin`` (m) keeps points with a gap up to ``margin`` (speculative contacts).
+
+    The skips are written out in the loop, each a ``continue``: gathered into a function that
+    returns early (even one numba inlines), the loop took 1.5 times as long on rain's 2,783
+    circle pairs (160 against 107 us), the record writes no longer overlapping the next pair's
+    tests."""
     wp = place_polygons(shapes, vertices, bodies)
     k = 0
     for q in range(npairs):  # contacts[k] exists: k <= q < npairs <= len(contacts)
-        if pair_manifold(pairs[q, 0], pairs[q, 1], shapes, wp, bodies, joints, margin, contacts[k]):
+        i, j = pairs[q, 0], pairs[q, 1]
+        shape_i, shape_j = shapes[i], shapes[j]
+        a, b = shape_i["body"], shape_j["body"]
+        if a == b or not within_reach(shape_i, shape_j, bodies[a], bodies[b], margin):
+            continue  # one body's shapes, or too far apart to touch
+        if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
+            continue  # joined bodies do not collide
+        manifold = collide_pair(i, j, shapes, wp, bodies, margin)
+        if manifold[0] > 0:
+            write_manifold(contacts[k], i, j, shapes, manifold)
             k += 1
     return k
 
 
-@njit(inline="always")
-def pair_manifold(i: int, j: int, shapes, wp, bodies, joints, margin: float, c) -> bool:
-    """Shape pair (i, j)'s manifold into the CONTACT record ``c``; False (``c`` untouched) when
-    the shapes share a body or a joint, are out of reach or do not touch. ``wp``: the placed
-    polygons (:func:`place_polygons`)."""
+@njit
+def write_manifold(c, i: int, j: int, shapes, manifold) -> None:
+    """Shape pair (i, j)'s manifold (:func:`collide_pair`) into the CONTACT record ``c``:
+    the bodies, the normal, the mixed friction and restitution, both point slots (an unused
+    second slot as :func:`collide_pair` gives it: zeros and feature -1)."""
+    count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = manifold
     shape_i, shape_j = shapes[i], shapes[j]
-    a, b = shape_i["body"], shape_j["body"]
-    if a == b or not within_reach(shape_i, shape_j, bodies[a], bodies[b], margin):
-        return False
-    if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
-        return False
-    count, nx, ny, x0, y0, d0, f0, x1, y1, d1, f1 = collide_pair(i, j, shapes, wp, bodies, margin)
-    if count == 0:
-        return False
-    c["a"], c["b"], c["shape_a"], c["shape_b"], c["count"] = a, b, i, j, count
+    c["a"], c["b"], c["shape_a"], c["shape_b"] = shape_i["body"], shape_j["body"], i, j
+    c["count"] = count
     c["normal"][0], c["normal"][1] = nx, ny
     c["friction"] = shape_i["friction"] * shape_j["friction"]
     c["restitution"] = shape_i["restitution"] * shape_j["restitution"]
     p = c["points"][0]
     point = p["point"]
     point[0], point[1], p["depth"], p["feature"] = x0, y0, d0, f0
-    p = c["points"][1]  # an unused second slot: zeros and feature -1 (as collide_pair gives)
+    p = c["points"][1]
     point = p["point"]
     point[0], point[1], p["depth"], p["feature"] = x1, y1, d1, f1
-    return True
 
 
 def collide(pairs, shapes, vertices, bodies, margin: float = 0.0, joints=None):
