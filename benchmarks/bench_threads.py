@@ -72,6 +72,7 @@ from sandbox.narrowphase import (
     write_manifold,
 )
 from sandbox.scene import validate_scene
+from sandbox.speculative import closing_reach
 from sandbox.step import STAGES, StageTimer
 
 CASES = {
@@ -85,13 +86,15 @@ STATE = ("com", "vel", "omega", "angle")
 
 # --- the two-thread narrowphase --------------------------------------------------------------
 @njit(parallel=True)
-def collide_slots(pairs, npairs, shapes, wp, bodies, joints, margin, contacts) -> None:
+def collide_slots(pairs, npairs, shapes, wp, bodies, joints, reach, contacts) -> None:
     """Pair q's manifold into ``contacts[q]`` (count 0 when none), the pairs shared among
     numba's threads: each record is written by one thread only."""
+    base, ahead = reach
     for q in numba.prange(npairs):
         contacts[q]["count"] = 0
         i, j = pairs[q, 0], pairs[q, 1]  # the skips and the writing of collide_into
         a, b = shapes[i]["body"], shapes[j]["body"]
+        margin = base + closing_reach(bodies[a], shapes[i], bodies[b], shapes[j], ahead)
         if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
             continue
         if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
@@ -116,11 +119,11 @@ def move_manifold(contacts, q: int, k: int) -> None:
 
 
 @njit
-def collide_two_threads(pairs, npairs, shapes, vertices, bodies, joints, margin, contacts) -> int:
+def collide_two_threads(pairs, npairs, shapes, vertices, bodies, joints, reach, contacts) -> int:
     """:func:`sandbox.narrowphase.collide_into` with the pairs shared among threads, then put
     in pair order on one thread (``contacts`` needs a row per pair). Returns how many."""
     wp = place_polygons(shapes, vertices, bodies)
-    collide_slots(pairs, npairs, shapes, wp, bodies, joints, margin, contacts)
+    collide_slots(pairs, npairs, shapes, wp, bodies, joints, reach, contacts)
     k = 0
     for q in range(npairs):
         if contacts[q]["count"] > 0:

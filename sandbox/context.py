@@ -56,6 +56,7 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     # stack keeps its contacts even at a large dt
     ctx["contact_margin"] = max(s.contact_margin, float(np.hypot(*gravity)) * dt * dt)
     ctx["touch_margin"] = s.contact_margin
+    ctx["look_ahead"] = dt if getattr(s, "speculative", False) else 0.0
     for key, default in SOFT_DEFAULTS:
         ctx[key] = getattr(s, key, default)
     ctx["joint_solver"] = JOINT_SOLVERS.index(getattr(s, "joint_solver", "auto"))

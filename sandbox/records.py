@@ -271,6 +271,8 @@ CONTEXT = np.dtype(
         ("restitution_threshold", F8),
         ("contact_margin", F8),  # the setting, or |g| dt^2 when larger (m)
         ("touch_margin", F8),  # the setting: closer than this counts as touching (m)
+        ("look_ahead", F8),  # s: speculative contacts reach as far as bodies move in this (dt,
+        # with settings.speculative; 0: contact_margin alone; sandbox.speculative)
         ("contact_hertz", F8),
         ("contact_damping_ratio", F8),
         ("joint_hertz", F8),

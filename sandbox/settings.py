@@ -144,6 +144,14 @@ class Settings:
         Range(0.0, 1.0, "m"),
         ge=0.0,
     )
+    speculative: bool = _setting(
+        False,
+        "boolean",
+        "contacts also reach as far as the two bodies can close in one step (speculative "
+        "contacts): a fast body meets a surface in the step it gets there, and does not pass "
+        "through a thin wall (off: contact_margin alone, as the tunnelling lesson shows; the "
+        "pairwise solver resolves only overlapping points and ignores them)",
+    )
     sleep: bool = _setting(
         False, "boolean", "let bodies that have come to rest sleep until something touches them"
     )

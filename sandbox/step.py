@@ -77,6 +77,7 @@ from sandbox.solvers.soft import (
     softness,
     solve_soft,
 )
+from sandbox.speculative import box_reach
 from sandbox.toi import hold_stopped, limit_ccd_motion
 
 STAGES = (
@@ -106,15 +107,19 @@ FAT_MARGIN = 0.02
 
 
 @njit
-def place_proxies(shapes, vertices, bodies, margin: float, proxies) -> None:
-    """Each shape's box grown by ``margin`` (m, :func:`sandbox.broadphase.aabb.shape_box`), its
+def place_proxies(shapes, vertices, bodies, reach, proxies) -> None:
+    """Each shape's box grown by ``reach`` = (margin (m), look-ahead (s)): the margin, and with
+    speculative contacts as far as the shape moves in the look-ahead
+    (:func:`sandbox.speculative.box_reach`; :func:`sandbox.broadphase.aabb.shape_box`); its
     body and whether that body can be pushed (the broadphase's filter), in one pass."""
+    margin, ahead = reach
     for k in range(shapes.shape[0]):
         b = shapes[k]["body"]
         body = bodies[b]
         p = proxies[k]
         a = p["aabb"]
-        a[0], a[1], a[2], a[3] = shape_box(shapes[k], vertices, body, margin)
+        grow = margin + box_reach(body, shapes[k], ahead)
+        a[0], a[1], a[2], a[3] = shape_box(shapes[k], vertices, body, grow)
         p["body"] = b
         p["fixed"] = broadphase_flags(body)
 
@@ -138,12 +143,12 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     out the rest (out of reach). A pile at rest sweeps again only when something moved."""
     ctx = context[0]
     m = shapes.shape[0]
-    margin = ctx["contact_margin"]
-    if ctx["pairs_kept"] and boxes_hold(shapes, vertices, bodies, margin, proxies):
+    margin, ahead = ctx["contact_margin"], ctx["look_ahead"]
+    if ctx["pairs_kept"] and boxes_hold(shapes, vertices, bodies, (margin, ahead), proxies):
         ctx["pair_tests"] = 0
         return ctx["pairs"]
     ctx["pairs_kept"] = False
-    place_proxies(shapes, vertices, bodies, margin + FAT_MARGIN, proxies)
+    place_proxies(shapes, vertices, bodies, (margin + FAT_MARGIN, ahead), proxies)
     d, recount, k, tests = sweep(proxies, ctx["sweep_direction"], ctx["sweep_recount"], pairs[0])
     ctx["sweep_direction"], ctx["sweep_recount"] = d, recount
     ctx["pair_tests"] = tests
@@ -156,15 +161,18 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
 
 
 @njit
-def boxes_hold(shapes, vertices, bodies, margin: float, proxies) -> bool:
-    """Whether every shape's box grown by ``margin`` (m) still lies within its swept box
-    (``PROXY["aabb"]``), on the same body with the same broadphase flags."""
+def boxes_hold(shapes, vertices, bodies, reach, proxies) -> bool:
+    """Whether every shape's box grown by ``reach`` (as :func:`place_proxies`) still lies
+    within its swept box (``PROXY["aabb"]``), on the same body with the same broadphase
+    flags."""
+    margin, ahead = reach
     for k in range(shapes.shape[0]):
         b = shapes[k]["body"]
         body, p = bodies[b], proxies[k]
         if p["body"] != b or p["fixed"] != broadphase_flags(body):
             return False
-        x0, y0, x1, y1 = shape_box(shapes[k], vertices, body, margin)
+        grow = margin + box_reach(body, shapes[k], ahead)
+        x0, y0, x1, y1 = shape_box(shapes[k], vertices, body, grow)
         a = p["aabb"]
         if x0 < a[0] or y0 < a[1] or x1 > a[2] or y1 > a[3]:
             return False
@@ -232,9 +240,8 @@ def find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, co
         npairs = find_pairs(shapes, vertices, bodies, proxies, pairs, context)
         if npairs < 0:
             return npairs
-        k = collide_into(
-            pairs[1], npairs, shapes, vertices, bodies, joints, ctx["contact_margin"], contacts
-        )
+        reach = (ctx["contact_margin"], ctx["look_ahead"])
+        k = collide_into(pairs[1], npairs, shapes, vertices, bodies, joints, reach, contacts)
         if not ctx["sleep"] or wake_touched(contacts, k, bodies) == 0:
             break
     return k
@@ -407,7 +414,9 @@ def staged_pairs(world, a, ctx) -> int:
             a.shapes, a.vertices, a.bodies, a.buffers.proxies, a.buffers.pairs, a.context
         )
     proxies = a.buffers.proxies
-    place_proxies(a.shapes, a.vertices, a.bodies, ctx["contact_margin"], proxies)
+    place_proxies(
+        a.shapes, a.vertices, a.bodies, (ctx["contact_margin"], ctx["look_ahead"]), proxies
+    )
     found, tests = find_pairs_by_name(
         world.settings.broadphase,
         np.ascontiguousarray(proxies["aabb"]),
@@ -443,7 +452,8 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
             return npairs
         clock.lap("find_pairs")
         geometry = (a.shapes, a.vertices, a.bodies, a.joints)
-        k = collide_into(a.buffers.pairs[1], npairs, *geometry, ctx["contact_margin"], contacts)
+        reach = (ctx["contact_margin"], ctx["look_ahead"])
+        k = collide_into(a.buffers.pairs[1], npairs, *geometry, reach, contacts)
         if ctx["sleep"] and wake_touched(contacts, k, a.bodies) > 0:
             buffers = (a.buffers.proxies, a.buffers.pairs)
             k = find_contacts(*geometry, *buffers, contacts, a.context)

@@ -98,10 +98,11 @@ def test_threaded_kernel_writes_the_same_manifolds_in_pair_order():
     m = a.shapes.shape[0]
     i, j = np.triu_indices(m, 1)
     pairs = np.ascontiguousarray(np.stack([i, j], axis=1), dtype=np.int64)
-    geometry = (a.shapes, a.vertices, a.bodies, a.joints, float(a.context[0]["contact_margin"]))
+    geometry = (a.shapes, a.vertices, a.bodies, a.joints)
+    margin = float(a.context[0]["contact_margin"])
     one, two = np.zeros(len(pairs), CONTACT), np.zeros(len(pairs), CONTACT)
-    k1 = collide_into(pairs, len(pairs), *geometry, one)
-    k2 = bench_threads.collide_two_threads(pairs, len(pairs), *geometry, two)
+    k1 = collide_into(pairs, len(pairs), *geometry, (margin, 0.0), one)
+    k2 = bench_threads.collide_two_threads(pairs, len(pairs), *geometry, (margin, 0.0), two)
     assert k1 == k2 > 100
     for field in WRITTEN:
         assert np.array_equal(one[field][:k1], two[field][:k2]), field
