@@ -32,6 +32,7 @@ from sandbox.debug_draw import LayerArtists
 from sandbox.energy_bars import PANEL, EnergyBars
 from sandbox.layer_key import COLORS as LAYER_COLORS
 from sandbox.layer_key import SLEEP_FACE, draw_key, key_layout
+from sandbox.legend_layer import LegendLayer
 from sandbox.outlines import OutlineArrays, bounds, place, zigzag
 from sandbox.overlays import Layers
 from sandbox.recording import Recording
@@ -248,6 +249,7 @@ class FrameRenderer:
             self.animated += [pivots] if pivots is not None else []  # hinges on top
         if self.layers is not None:  # over every run's bodies
             self.animated += self.layers.artists
+        self.legend = None
         if labels is not None:
             handles = [
                 Patch(facecolor=(*c[:3], FILL_ALPHA), edgecolor=c, label=str(lab))
@@ -256,8 +258,8 @@ class FrameRenderer:
             legend = ax.legend(handles=handles, loc="upper right", fontsize=fontsize)
             for text in legend.get_texts():
                 text.set_parse_math(False)  # a scene or body name with "$" is shown as typed
-            legend.set_animated(True)
-            self.animated.append(legend)
+            legend.set_animated(True)  # not in the background: laid over each frame instead
+            self.legend = legend
         self.time_text = None
         if show_time:
             self.time_text = ax.text(
@@ -284,6 +286,10 @@ class FrameRenderer:
             self.animated += self.series.artists
         self.canvas.draw()
         self.background = self.canvas.copy_from_bbox(self.fig.bbox)
+        self.legend_layer = None
+        if self.legend is not None:  # drawn once, over the bodies in every frame
+            width, height = self.canvas.get_width_height()
+            self.legend_layer = LegendLayer(self.legend, width, height, self.fig.dpi)
 
     def _draw_water(self, linewidth: float) -> None:
         """Each fluid as a translucent band from below the view up to its surface (background)."""
@@ -349,7 +355,8 @@ class FrameRenderer:
         self.canvas.restore_region(self.background)
         for artist in self.animated:
             artist.axes.draw_artist(artist)
-        return np.asarray(self.canvas.buffer_rgba())[..., :3].copy()
+        rgb = np.asarray(self.canvas.buffer_rgba())[..., :3].copy()
+        return rgb if self.legend_layer is None else self.legend_layer.over(rgb)
 
     def palette_colors(self) -> np.ndarray:
         """RGB uint8 colours this renderer draws with (run fills and edges, greys, white)."""

@@ -336,3 +336,35 @@ def test_recordings_without_joints_still_render_and_joints_are_checked(tmp_path)
         Recording(["a"], ["dynamic"], [[]], joints=[JointOutline("pin", 0, 1, (0, 0), (0, 0))])
     with pytest.raises(ValueError):
         Recording(["a"], ["dynamic"], [[]], fluids=[math.inf])
+
+
+def test_legend_is_laid_over_the_bodies_as_agg_would_draw_it():
+    """The legend, drawn once and composited over each frame (sandbox.legend_layer), gives the
+    pixels Agg gives drawing it over that frame, to within two levels of 255 (Agg rounds after
+    each of the legend's parts: one level over white, two over a body), also where a body
+    passes under it (seen through its translucent frame), and only inside its box."""
+    from sandbox.frames import FrameRenderer
+
+    rec = moving_ball(frames=6, x0=-1.0)  # the ball ends at x = 4, under the upper-right legend
+    rec.add_frame([[0.0, -4.0, 0.0], [3.6, 3.9, 0.0]], 6 / 30, height=6.0)
+    with FrameRenderer(rec, size_px=200, view=VIEW, labels=["a run"], show_time=False) as r:
+        layer = r.legend_layer
+        assert layer is not None and not layer.empty
+        for k in (0, 6):
+            laid = r.frame(k)
+            r.legend.axes.draw_artist(r.legend)  # the frame just drawn, then Agg's own legend
+            drawn = np.asarray(r.canvas.buffer_rgba())[..., :3].astype(int)
+            assert np.abs(laid.astype(int) - drawn).max() <= 2
+        with FrameRenderer(rec, size_px=200, view=VIEW, show_time=False) as plain:
+            bare = plain.frame(6).astype(int)
+        changed = np.abs(laid.astype(int) - bare).max(axis=2) > 1
+        rows, cols = np.nonzero(changed)
+        assert changed.any()  # the legend is there ...
+        inside = (rows >= layer.rows.start) & (rows < layer.rows.stop)
+        inside &= (cols >= layer.cols.start) & (cols < layer.cols.stop)
+        assert inside.all()  # ... and nowhere else
+        box = laid[layer.rows, layer.cols].astype(int)
+        under = bare[layer.rows, layer.cols]
+        ball = np.abs(under - 255).max(axis=2) > 40  # the ball's pixels under the legend
+        assert ball.sum() > 20
+        assert (np.abs(box - 255).max(axis=2)[ball] > 10).mean() > 0.5  # seen through it
