@@ -39,6 +39,7 @@ SCENES = {
     "rain_1000": (lambda: scenes.rain(1000), 300),
     "pyramid_20": (lambda: scenes.pyramid(20), 300),
     "pyramid_40": (lambda: scenes.pyramid(40), 200),
+    "rain_5000": (lambda: scenes.rain(5000), 120),
 }
 
 
