@@ -4,8 +4,9 @@ few times each, so that a class's first runs load machine code instead of compil
 Each world below exercises one family of stages: every solver through both the one-call step
 and the staged step, every broadphase, every integrator with every kind of force, continuous
 collision, every joint; then the functions lessons call directly (pair finding with a trace of
-the tests, manifolds, distance and time of impact). When all of them ran, the cache is marked
-warm (:func:`sandbox.compile_cache.mark_warm`), which the command line reads.
+the tests, manifolds, distance and time of impact, the sweep's intervals, the rotation kernels,
+the soft step's joint passes on copies of a world's records). When all of them ran, the cache
+is marked warm (:func:`sandbox.compile_cache.mark_warm`), which the command line reads.
 
 On a machine with two cores the families are shared out between two processes (:func:`part`),
 each compiling its share into the same cache; then this process steps every family once more,
@@ -99,7 +100,8 @@ def worlds():
 
 def helpers() -> None:
     """The compiled functions lessons and tests call on their own."""
-    from sandbox.broadphase import STRATEGIES, find_pairs_traced, shape_aabbs
+    from sandbox import orientation
+    from sandbox.broadphase import STRATEGIES, find_pairs_traced, sap, shape_aabbs
     from sandbox.buoyancy import circle_submerged, polygon_submerged
     from sandbox.toi import distance, time_of_impact
 
@@ -128,6 +130,28 @@ def helpers() -> None:
         square,
         (np.array([2.0, 0.0]), 0.0, np.array([2.0, 0.0]), 0.0),
     )
+    sap.describe(boxes)  # the sweep's intervals, as the broadphase lesson draws them
+    rot, cs = np.zeros((2, 4)), np.zeros((2, 2))  # the rotation lesson's kernels
+    orientation.set_angles(0, rot, np.zeros(2))
+    orientation.integrate_rotations(0, rot, np.zeros(2), True)
+    orientation.cos_sin(0, rot, cs)
+    joint_passes()
+
+
+def joint_passes() -> None:
+    """The soft step's joint passes called from Python on copies of a world's records, as the
+    soft step lesson compares them (solved together, or swept)."""
+    from sandbox.joints.direct import solve_joints_direct
+    from sandbox.joints.solve import solve_joints_soft
+    from sandbox.solvers.soft import softness
+
+    world = sample_world(solver="soft")
+    step(world)  # the joints' records prepared, as in a running world
+    arrays = world.arrays()
+    h = world.dt / world.settings.substeps
+    soft = softness(world.settings.joint_hertz, world.settings.joint_damping_ratio, h)
+    for solve in (solve_joints_direct, solve_joints_soft):
+        solve(arrays.joints.copy(), arrays.bodies.copy(), soft, True, 1.0 / h)
 
 
 def part(index: int, parts: int) -> list:

@@ -81,3 +81,46 @@ def test_the_counter_sees_the_slow_dispatch_this_test_was_written_for(slow_dispa
     fix_positions(*stage)
     fix_positions(*stage)
     assert slow_dispatches == ["fix_positions"] * 2
+
+
+def test_the_warmup_compiles_what_lessons_call_from_python(slow_dispatches):
+    """Lessons call some kernels from Python with their own argument types (the soft step
+    lesson's joint passes on copies of a chain's records, the rotation lesson's kernels, the
+    broadphase lesson's sweep intervals): after the warm-up's helpers those calls find their
+    machine code at once, so ``sandbox warmup`` leaves nothing for a lesson to compile."""
+    import numpy as np
+
+    from sandbox import orientation
+    from sandbox.broadphase import sap
+    from sandbox.joints.direct import solve_joints_direct
+    from sandbox.joints.solve import solve_joints_soft
+    from sandbox.scene import load_scene
+    from sandbox.solvers.soft import softness
+
+    warmup.helpers()
+    slow_dispatches.clear()
+    link = {"type": "box", "width": 0.5, "height": 0.1, "density": 20.0}
+    bodies = [{"name": "hook", "type": "static", "position": [0.0, 10.0], "shapes": []}]
+    joints = []
+    for i in range(3):
+        bodies.append({"name": f"link{i}", "position": [(i + 0.5) * 0.5, 10.0], "shapes": [link]})
+        joints.append(
+            {"type": "pivot", "a": "hook" if i == 0 else f"link{i - 1}", "b": f"link{i}",
+             "anchor_a": [0.0, 0.0] if i == 0 else [0.25, 0.0], "anchor_b": [-0.25, 0.0]}
+        )  # fmt: skip
+    chain = load_scene({"version": 1, "name": "chain", "gravity": [0.0, -9.81], "dt": 1 / 60,
+                        "settings": {"solver": "soft"}, "bodies": bodies, "joints": joints})  # fmt: skip
+    chain.step()
+    arrays = chain.arrays()
+    h = chain.dt / chain.settings.substeps
+    soft = softness(chain.settings.joint_hertz, chain.settings.joint_damping_ratio, h)
+    for solve in (solve_joints_direct, solve_joints_soft):
+        solve(arrays.joints.copy(), arrays.bodies.copy(), soft, True, 1.0 / h)
+    rng = np.random.default_rng(0)
+    for kind in orientation.NAMES.values():
+        rot, cs = np.zeros((5, 4)), np.zeros((5, 2))
+        orientation.set_angles(kind, rot, rng.uniform(-3.0, 3.0, 5))
+        orientation.integrate_rotations(kind, rot, rng.uniform(-0.1, 0.1, 5), False)
+        orientation.cos_sin(kind, rot, cs)
+    sap.describe(rng.uniform(0.0, 1.0, (6, 4)) + np.array([0.0, 0.0, 1.0, 1.0]))
+    assert slow_dispatches == []
