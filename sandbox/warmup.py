@@ -132,9 +132,10 @@ def helpers() -> None:
     )
     sap.describe(boxes)  # the sweep's intervals, as the broadphase lesson draws them
     rot, cs = np.zeros((2, 4)), np.zeros((2, 2))  # the rotation lesson's kernels
-    orientation.set_angles(0, rot, np.zeros(2))
-    orientation.integrate_rotations(0, rot, np.zeros(2), True)
-    orientation.cos_sin(0, rot, cs)
+    kind = orientation.COMPLEX  # one compiled version serves every representation (an int)
+    orientation.set_angles(kind, rot, np.zeros(2))
+    orientation.integrate_rotations(kind, rot, np.zeros(2), True)
+    orientation.cos_sin(kind, rot, cs)
     joint_passes()
 
 
