@@ -10,11 +10,19 @@ is marked warm (:func:`sandbox.compile_cache.mark_warm`), which the command line
 
 On a machine with two cores the families are shared out between two processes (:func:`part`),
 each compiling its share into the same cache; then this process steps every family once more,
-which loads what the other compiled and compiles whatever it missed. Measured on the project's
-2-core machine from an empty cache: 98 s for the two shares and 1.9 s for the pass after them
-(108 s in all in a second run), against 129 s in one process (numba compiles one function at
-a time per process, and the families share many functions, so two processes do not halve
-it).
+which loads what the other compiled and compiles whatever it missed. numba compiles one
+function at a time per process, and every world steps through the same stages, so a process
+loads from the cache what the other has already written there, and compiles again what the
+other is still compiling. The two shares are therefore planned (:data:`FIRST_SHARE`), not dealt
+round-robin: the first compiles the stages with the iterative solver's one-call step, then the
+soft step; the second meanwhile compiles the kernels lessons call on their own, which no step
+uses (:func:`lesson_kernels`, about 25 s), so that by the time it steps worlds most of the
+stages are in the cache, and then the forces and the integrators, which the first share never
+steps. Dealt round-robin, both shares began with the iterative solver (once in one call, once
+stage by stage) and compiled the same stages side by side for 40 s, and both compiled the soft
+step and the force generators again. Measured on the project's 2-core machine from an empty
+cache (`sandbox warmup`, all of it): 85 s and 151 CPU-s planned, against 109 s and 198 CPU-s
+round-robin, and about 121 s in one process.
 """
 
 from __future__ import annotations
@@ -100,6 +108,14 @@ def worlds():
 
 def helpers() -> None:
     """The compiled functions lessons and tests call on their own."""
+    lesson_kernels()
+    joint_passes()
+
+
+def lesson_kernels() -> None:
+    """The kernels lessons call on their own that no world's step uses: every broadphase with a
+    trace of its tests, shape boxes, submerged areas, distance and time of impact, the sweep's
+    intervals, the rotation kernels."""
     from sandbox import orientation
     from sandbox.broadphase import STRATEGIES, find_pairs_traced, sap, shape_aabbs
     from sandbox.buoyancy import circle_submerged, polygon_submerged
@@ -136,7 +152,6 @@ def helpers() -> None:
     orientation.set_angles(kind, rot, np.zeros(2))
     orientation.integrate_rotations(kind, rot, np.zeros(2), True)
     orientation.cos_sin(kind, rot, cs)
-    joint_passes()
 
 
 def joint_passes() -> None:
@@ -155,10 +170,31 @@ def joint_passes() -> None:
         solve(arrays.joints.copy(), arrays.bodies.copy(), soft, True, 1.0 / h)
 
 
+# two shares: the first's families, in this order; the second takes the others, the families of
+# SECOND_SHARE_FIRST first (the stages again, loaded by then, and what the first never steps)
+FIRST_SHARE = ("iterative solver", "soft solver", "soft solver, staged", "soft step with forces")
+SECOND_SHARE_FIRST = (
+    "iterative solver, staged",
+    "explicit_euler and forces",
+    "verlet and forces",
+    "rk4 and forces",
+    "rk4 and forces, staged",
+    "continuous collision",
+)
+
+
 def part(index: int, parts: int) -> list:
-    """Share ``index`` of ``parts`` of :func:`worlds`, dealt round-robin: (label, world,
-    staged) of every family whose place in the list is ``index`` modulo ``parts``."""
-    return [family for q, family in enumerate(worlds()) if q % parts == index]
+    """Share ``index`` of ``parts`` of :func:`worlds`: (label, world, staged) of its families.
+    Two shares are planned (:data:`FIRST_SHARE`, see the module); more are dealt round-robin,
+    every family whose place in the list is ``index`` modulo ``parts``."""
+    families = list(worlds())
+    if parts != 2:
+        return [family for q, family in enumerate(families) if q % parts == index]
+    by_label = {family[0]: family for family in families}
+    if index == 0:
+        return [by_label[label] for label in FIRST_SHARE]
+    rest = [label for label in by_label if label not in FIRST_SHARE + SECOND_SHARE_FIRST]
+    return [by_label[label] for label in SECOND_SHARE_FIRST + tuple(rest)]
 
 
 def warm_families(families, report=print) -> None:
@@ -171,13 +207,21 @@ def warm_families(families, report=print) -> None:
 
 
 def warm_part(index: int, parts: int, report=print) -> set[str]:
-    """Compile (or load) share ``index`` of ``parts`` of the families; the first share also
-    compiles the functions lessons call on their own (:func:`helpers`). Returns the labels of
-    the families it stepped."""
+    """Compile (or load) share ``index`` of ``parts`` of the families, and the functions lessons
+    call on their own (:func:`helpers`): with two shares the second begins with
+    :func:`lesson_kernels` and the first ends with :func:`joint_passes` (see the module),
+    otherwise the first share ends with all of them. Returns the labels of the families it
+    stepped."""
     share = part(index, parts)
+    planned = parts == 2
+    if planned and index == 1:
+        lesson_kernels()  # while the first share compiles the stages
     warm_families(share, report)
     if index == 0:
-        helpers()
+        if planned:
+            joint_passes()  # after the soft step, whose kernels they share
+        else:
+            helpers()
     return {label for label, _, _ in share}
 
 
