@@ -21,8 +21,8 @@ stages are in the cache, and then the forces and the integrators, which the firs
 steps. Dealt round-robin, both shares began with the iterative solver (once in one call, once
 stage by stage) and compiled the same stages side by side for 40 s, and both compiled the soft
 step and the force generators again. Measured on the project's 2-core machine from an empty
-cache (`sandbox warmup`, all of it): 85 s and 151 CPU-s planned, against 109 s and 198 CPU-s
-round-robin, and about 121 s in one process.
+cache (`sandbox warmup`, alternating the two codes): 82 to 86 s wall and 141 to 150 CPU-s
+planned, against 101 to 105 s and 182 to 190 CPU-s round-robin, and about 121 s in one process.
 """
 
 from __future__ import annotations
