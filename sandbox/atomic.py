@@ -18,9 +18,9 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import os
+import secrets
 import signal
 import stat
-import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any
@@ -30,6 +30,9 @@ _UMASK = os.umask(0o022)
 os.umask(_UMASK)
 
 _MODES = ("w", "wt", "wb")
+# a temporary file is created new, or not at all, as tempfile.mkstemp creates its files
+_NEW_FILE = os.O_WRONLY | os.O_CREAT | os.O_EXCL
+_NEW_FILE |= getattr(os, "O_BINARY", 0) | getattr(os, "O_NOINHERIT", 0)  # Windows
 _SIGNALS = {getattr(signal, s) for s in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, s)}
 
 
@@ -173,23 +176,18 @@ def atomic_write(
         raise ValueError(f"atomic_write: mode must be one of {', '.join(_MODES)}, got {mode!r}")
     target = os.path.abspath(os.fspath(path))
     folder = os.path.dirname(target)
+    active = _ACTIVE.get()
+    tmp = fd = handle = None
     try:
-        fd, tmp = tempfile.mkstemp(
-            prefix=f".{os.path.basename(target)}.", suffix=".tmp", dir=folder
-        )
-    except OSError as err:
-        raise _named(err, path) from None
-    try:
+        # the name before the file: a Ctrl-C at any moment finds the temporary file's name known
+        # and it is removed below (tempfile.mkstemp gives both at once: one arriving as it
+        # returns left the file behind)
+        tmp = os.path.join(folder, f".{os.path.basename(target)}.{secrets.token_hex(8)}.tmp")
+        fd = os.open(tmp, _NEW_FILE, 0o600)
         if "b" in mode:
             handle = os.fdopen(fd, "wb")
         else:
             handle = os.fdopen(fd, "w", encoding=encoding, newline=newline)
-    except BaseException:
-        os.close(fd)
-        _remove(tmp)
-        raise
-    active = _ACTIVE.get()
-    try:
         with handle:
             yield handle
             handle.flush()
@@ -200,10 +198,12 @@ def atomic_write(
         os.chmod(tmp, _permissions(target))
         os.replace(tmp, target)
     except OSError as err:
-        _remove(tmp)
+        if fd is None and isinstance(err, FileExistsError):
+            tmp = None  # that name was taken (2^-64): the file is not ours to remove
+        _discard(handle, fd, tmp)
         raise _named(err, path) from None
     except BaseException:
-        _remove(tmp)
+        _discard(handle, fd, tmp)
         raise
     _sync_folder(folder)
 
@@ -246,6 +246,17 @@ def _permissions(target: str) -> int:
         return stat.S_IMODE(os.stat(target).st_mode)
     except OSError:
         return 0o666 & ~_UMASK
+
+
+def _discard(handle: IO[Any] | None, fd: int | None, tmp: str | None) -> None:
+    """Close and remove a temporary file that will not be renamed, as far as it was made."""
+    with contextlib.suppress(OSError):
+        if handle is not None:
+            handle.close()
+        elif fd is not None:
+            os.close(fd)
+    if tmp is not None:
+        _remove(tmp)
 
 
 def _remove(tmp: str) -> None:

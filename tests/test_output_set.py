@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 
 import pytest
 
@@ -100,3 +102,26 @@ def test_an_os_error_names_the_file_being_written(tmp_path):
         raise OSError(28, "No space left on device")
     assert info.value.filename == str(tmp_path / "t.csv")
     assert names(tmp_path) == []
+
+
+def test_a_ctrl_c_just_as_the_temporary_file_is_made_leaves_nothing(tmp_path, monkeypatch):
+    # a real SIGINT sent the moment the temporary file exists, before its descriptor is handed
+    # back (the race an interrupted GIF render lost once in CI, when the name came back with
+    # the descriptor): the file is removed, the old one stays, for a lone file and in a set
+    from sandbox import atomic
+
+    create = os.open
+
+    def create_then_interrupt(path, *args, **kwargs):
+        fd = create(path, *args, **kwargs)
+        if str(path).endswith(".tmp"):
+            os.kill(os.getpid(), signal.SIGINT)
+        return fd
+
+    atomic_write_text(tmp_path / "a.gif", "old animation")
+    monkeypatch.setattr(atomic.os, "open", create_then_interrupt)
+    for wrap in (contextlib.nullcontext, output_set):
+        with pytest.raises(KeyboardInterrupt), wrap():
+            atomic_write_text(tmp_path / "a.gif", "new animation")
+        assert names(tmp_path) == ["a.gif"]
+        assert (tmp_path / "a.gif").read_text() == "old animation"
