@@ -6,6 +6,12 @@ visit applies the collision equation's impulse that makes that one point right, 
 others did so far. Repeated, the sweeps converge towards impulses that satisfy every contact at
 once, which is what a stack needs. Joints take their turn in every sweep.
 
+Any fixed order of visits is a valid sweep. With accumulated impulses (the default) the sweeps
+visit the contacts colour by colour (:func:`coloured_sweeps`): no two contacts of a colour
+share a moving body, so the processor visits eight of them at once with its vector
+instructions (:mod:`sandbox.solvers.wide`), with the very same arithmetic as one visit here
+(:mod:`sandbox.solvers.impulses`). Without, one by one (:func:`sweep`).
+
 The box2d-lite teaching switches:
 
 - ``accumulate_impulses``: clamp the running total of each point's impulse (>= 0, friction
@@ -26,10 +32,23 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from sandbox.jit import njit
 from sandbox.joints.solve import solve_joint_velocities
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
 from sandbox.solvers.common import masses, normal_speed
+from sandbox.solvers.impulses import block_totals, friction_total, normal_total
+from sandbox.solvers.wide import (
+    COLOURS,
+    buffers,
+    colour,
+    pack,
+    put_velocities,
+    take_velocities,
+    unpack,
+    visit_colour,
+)
 
 # at a large dt (:func:`large_step`): sweep until no normal constraint is off by more than
 # RESIDUAL x slop / dt (a point sinks a thousandth of the slop in the step), at most
@@ -65,9 +84,8 @@ def friction(points, count: int, nx: float, ny: float, mass, va, vb, mu: float):
         p = points[j]
         rt_a, rt_b = p["rt_a"], p["rt_b"]  # r x t at each body
         old = p["tangent_impulse"]
-        limit = mu * p["normal_impulse"]
         v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)  # v_r . t
-        new = min(max(old - p["tangent_mass"] * v_t, -limit), limit)
+        new = friction_total(old, p["tangent_mass"], v_t, mu * p["normal_impulse"])
         p["tangent_impulse"] = new
         va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, new - old)  # P = (new - old) t
     return va, vb
@@ -82,7 +100,7 @@ def normal(points, count: int, nx: float, ny: float, mass, va, vb):
         rn_a, rn_b = p["rn_a"], p["rn_b"]  # r x n at each body
         old = p["normal_impulse"]
         v_n = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n
-        new = max(old + p["normal_mass"] * (p["bias"] - v_n), 0.0)
+        new = normal_total(old, p["normal_mass"], p["bias"], v_n)
         p["normal_impulse"] = new
         va, vb = push_along(va, vb, mass, nx, ny, rn_a, rn_b, new - old)  # P = (new - old) n
     return va, vb
@@ -101,21 +119,13 @@ def block_normal(c, points, nx: float, ny: float, mass, va, vb):
     p0, p1 = points[0], points[1]
     rn_a0, rn_b0, rn_a1, rn_b1 = p0["rn_a"], p0["rn_b"], p1["rn_a"], p1["rn_b"]  # r x n
     a1, a2 = p0["normal_impulse"], p1["normal_impulse"]
-    k, m = c["block_k"], c["block_mass"]
+    k, mk = c["block_k"], c["block_mass"]
     k11, k12, k22 = k[0], k[1], k[2]
-    m11, m12, m22 = m[0], m[1], m[2]
+    m = mk[0], mk[1], mk[2]  # K^-1 as (m11, m12, m22)
     # b: the normal speed each point would have without the impulses applied so far, minus bias
     b1 = speed_along(va, vb, nx, ny, rn_a0, rn_b0) - p0["bias"] - (k11 * a1 + k12 * a2)
     b2 = speed_along(va, vb, nx, ny, rn_a1, rn_b1) - p1["bias"] - (k12 * a1 + k22 * a2)
-    x1, x2 = -(m11 * b1 + m12 * b2), -(m12 * b1 + m22 * b2)  # both push: x = -K^-1 b
-    if x1 < 0.0 or x2 < 0.0:
-        x1, x2 = -b1 * p0["normal_mass"], 0.0  # only the first pushes
-        if x1 < 0.0 or k12 * x1 + b2 < 0.0:
-            x1, x2 = 0.0, -b2 * p1["normal_mass"]  # only the second
-            if x2 < 0.0 or k12 * x2 + b1 < 0.0:
-                x1, x2 = 0.0, 0.0  # neither
-                if b1 < 0.0 or b2 < 0.0:
-                    return va, vb  # no solution (degenerate): leave as is
+    x1, x2 = block_totals(a1, a2, b1, b2, k12, m, p0["normal_mass"], p1["normal_mass"])
     va, vb = push_along(va, vb, mass, nx, ny, rn_a0, rn_b0, x1 - a1)  # P = (x1 - a1) n
     va, vb = push_along(va, vb, mass, nx, ny, rn_a1, rn_b1, x2 - a2)
     p0["normal_impulse"], p1["normal_impulse"] = x1, x2
@@ -143,32 +153,83 @@ def each_increment(points, count: int, nx: float, ny: float, mass, va, vb, mu: f
 
 @njit
 def sweep(contacts, k: int, bodies, accumulate: bool) -> None:
-    """One sweep of sequential impulses over the first ``k`` contacts, in :func:`visit` order.
-
-    Accumulated (box2d-lite): friction first, within the cone of the current normal impulse,
-    then the normal impulses (two points together when the block solver applies)."""
+    """One sweep of sequential impulses over the first ``k`` contacts, in :func:`visit` order
+    (:func:`visit_contact`)."""
     half = (k + 1) // 2
     for q in range(k):
-        c = contacts[visit(q, half)]
-        # what every visit reads, read once (in plain Python each record read costs a view)
-        a, b, points, count = c["a"], c["b"], c["points"], c["count"]
-        n = c["normal"]
-        nx, ny = n[0], n[1]
-        mass = masses(c)
-        va, vb = velocity_of(bodies, a), velocity_of(bodies, b)
-        if not accumulate:
-            va, vb = each_increment(points, count, nx, ny, mass, va, vb, c["friction"])
+        visit_contact(contacts[visit(q, half)], bodies, accumulate)
+
+
+@njit(inline="always")
+def visit_contact(c, bodies, accumulate: bool) -> None:
+    """One visit of contact ``c`` (:func:`visit_points`) with its bodies' velocities."""
+    a, b = c["a"], c["b"]
+    va, vb = visit_points(c, velocity_of(bodies, a), velocity_of(bodies, b), accumulate)
+    set_velocity(bodies, a, va)
+    set_velocity(bodies, b, vb)
+
+
+@njit(inline="always")
+def visit_points(c, va, vb, accumulate: bool):
+    """One visit of contact ``c`` given its bodies' velocities ``va``, ``vb`` (vx, vy, w), which
+    it returns changed: accumulated (box2d-lite), friction first, within the cone of the
+    current normal impulse, then the normal impulses (two points together when the block
+    solver applies); else :func:`each_increment`."""
+    # what every visit reads, read once (in plain Python each record read costs a view)
+    points, count = c["points"], c["count"]
+    n = c["normal"]
+    nx, ny = n[0], n[1]
+    mass = masses(c)
+    if not accumulate:
+        va, vb = each_increment(points, count, nx, ny, mass, va, vb, c["friction"])
+    else:
+        va, vb = friction(points, count, nx, ny, mass, va, vb, c["friction"])
+        if c["use_block"]:
+            va, vb = block_normal(c, points, nx, ny, mass, va, vb)
         else:
-            va, vb = friction(points, count, nx, ny, mass, va, vb, c["friction"])
-            if c["use_block"]:
-                va, vb = block_normal(c, points, nx, ny, mass, va, vb)
-            else:
-                va, vb = normal(points, count, nx, ny, mass, va, vb)
-        for j in range(count):
-            p = points[j]
-            p["max_normal_impulse"] = max(p["max_normal_impulse"], p["normal_impulse"])
-        set_velocity(bodies, a, va)
-        set_velocity(bodies, b, vb)
+            va, vb = normal(points, count, nx, ny, mass, va, vb)
+    for j in range(count):
+        p = points[j]
+        p["max_normal_impulse"] = max(p["max_normal_impulse"], p["normal_impulse"])
+    return va, vb
+
+
+@njit
+def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
+    """``n`` sweeps of accumulated impulses, each the joints, then the two-point contacts colour
+    by colour, eight at a time (:mod:`sandbox.solvers.wide`), then the others one by one in
+    :func:`visit` order: the contacts with one point, and any no colour could take. The same
+    visits as :func:`sweep`'s, in another order; a world of one-point contacts only (discs)
+    is swept exactly as :func:`sweep` sweeps it."""
+    colours = np.empty(k, dtype=np.int64)
+    count = colour(contacts, k, bodies, colours)
+    if count == 0:  # no two-point contact: one by one, as sweep() does (the same numbers)
+        for _ in range(n):
+            solve_joint_velocities(joints, bodies, True)
+            sweep(contacts, k, bodies, True)
+        return
+    lanes, owners, starts = buffers(k, count)
+    empty = len(bodies)  # the row of velocities that empty lanes read and write
+    blocks = pack(contacts, k, colours, count, lanes, owners, empty, starts)
+    alone = np.nonzero(colours == COLOURS)[0]
+    half = (len(alone) + 1) // 2
+    velocities = np.zeros((empty + 1, 3))
+    take_velocities(bodies, velocities)
+    for _ in range(n):
+        if len(joints) > 0:  # joints read and write the bodies' records
+            put_velocities(velocities, bodies)
+            solve_joint_velocities(joints, bodies, True)
+            take_velocities(bodies, velocities)
+        for c in range(count):
+            visit_colour(lanes, owners, starts[c], starts[c + 1], velocities)
+        for q in range(len(alone)):
+            contact = contacts[alone[visit(q, half)]]
+            v, w = velocities[contact["a"]], velocities[contact["b"]]
+            va, vb = visit_points(contact, (v[0], v[1], v[2]), (w[0], w[1], w[2]), True)
+            v[0], v[1], v[2] = va
+            w[0], w[1], w[2] = vb
+    put_velocities(velocities, bodies)
+    unpack(contacts, lanes, owners, blocks)
 
 
 @njit
@@ -216,9 +277,12 @@ def solve(contacts, k: int, joints, bodies, context) -> None:
     ctx = context[0]
     n = ctx["iterations"]
     ctx["sweeps"] = n
-    for _ in range(n):
-        solve_joint_velocities(joints, bodies, ctx["accumulate"])
-        sweep(contacts, k, bodies, ctx["accumulate"])
+    if ctx["accumulate"]:
+        coloured_sweeps(contacts, k, joints, bodies, n)
+    else:
+        for _ in range(n):
+            solve_joint_velocities(joints, bodies, False)
+            sweep(contacts, k, bodies, False)
     if k == 0 or not large_step(context):
         return
     tolerance = RESIDUAL * ctx["slop"] * ctx["inv_dt"]  # m/s

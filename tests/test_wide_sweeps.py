@@ -1,0 +1,150 @@
+"""The wide sweeps (sandbox.solvers.wide): contacts coloured so that no two of a colour share a
+moving body, visited eight at a time, give bit for bit what the one-by-one visits give in the
+same order (colour by colour, then the contacts no colour could take)."""
+
+from __future__ import annotations
+
+import platform
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sandbox import Body, Box, Circle, World
+from sandbox.build import build_world
+from sandbox.records import CONTACT, JOINT
+from sandbox.scene import validate_scene
+from sandbox.solvers.iterative import coloured_sweeps, visit, visit_contact
+from sandbox.solvers.wide import COLOURS, colour
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+import scenes  # noqa: E402
+
+
+def settled(spec: dict, steps: int):
+    """A world's last contacts (warm-started impulses and all) and bodies after ``steps``."""
+    world = build_world(validate_scene(spec))
+    for _ in range(steps):
+        world.step()
+    ctx = world.context[0]
+    s = int(ctx["contact_set"])
+    k = int(ctx["contact_count"][s])
+    return world._buffers.sets[s][:k].copy(), world.state.copy()
+
+
+def one_by_one(contacts, bodies, n: int) -> None:
+    """``n`` sweeps visiting the contacts one at a time in the wide sweeps' order: colour by
+    colour, then the rest in the interleaved order of the one-by-one sweeps."""
+    colours = np.empty(len(contacts), dtype=np.int64)
+    count = colour(contacts, len(contacts), bodies, colours)
+    order = [i for c in range(count) for i in np.flatnonzero(colours == c)]
+    alone = np.flatnonzero(colours == COLOURS)
+    order += [alone[visit(q, (len(alone) + 1) // 2)] for q in range(len(alone))]
+    for _ in range(n):
+        for i in order:
+            visit_contact(contacts[i], bodies, True)
+
+
+def fan(spokes: int, disc_every: int = 0):
+    """A plank on the ground with ``spokes`` small boxes resting on it (every ``disc_every``-th
+    a disc instead): more two-point contacts on one body than there are colours when
+    spokes > 63."""
+    w = World(gravity=(0.0, -9.81))
+    w.add_body(Body("ground", type="static", position=(0.0, -0.5))).add_shape(Box(400.0, 1.0))
+    w.add_body(Body("plank", position=(0.0, 0.25))).add_shape(Box(2.0 * spokes, 0.5))
+    for i in range(spokes):
+        small = Body(f"s{i}", position=(i - spokes / 2 + 0.5, 0.75), velocity=(0.0, -1.0))
+        disc = disc_every and i % disc_every == 0
+        w.add_body(small).add_shape(Circle(0.25) if disc else Box(0.5, 0.5))
+    w.step()
+    ctx = w.context[0]
+    s = int(ctx["contact_set"])
+    return w._buffers.sets[s][: int(ctx["contact_count"][s])].copy(), w.state.copy()
+
+
+CASES = {
+    "pyramid of base 20, boxes (two-point manifolds, block solver)": lambda: settled(
+        scenes.pyramid(20), 60
+    ),
+    "rain of 300 discs (one-point manifolds, all visited one by one)": lambda: settled(
+        scenes.rain(300), 150
+    ),
+    "a plank under 80 boxes (contacts no colour takes)": lambda: fan(80),
+    "a plank under 40 boxes and 40 discs": lambda: fan(80, disc_every=2),
+}
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_coloured_sweeps_equal_the_one_by_one_visits_bit_for_bit(case):
+    contacts, bodies = CASES[case]()
+    assert len(contacts) > 20
+    wide_c, wide_b = contacts.copy(), bodies.copy()
+    coloured_sweeps(wide_c, len(wide_c), np.zeros(0, dtype=JOINT), wide_b, 10)
+    one_by_one(contacts, bodies, 10)
+    for field in ("vel", "omega"):
+        assert np.array_equal(wide_b[field], bodies[field]), field
+    for field in ("normal_impulse", "tangent_impulse", "max_normal_impulse"):
+        for j in range(2):
+            used = contacts["count"] > j
+            got = wide_c["points"][:, j][field][used]
+            assert np.array_equal(got, contacts["points"][:, j][field][used]), field
+    assert np.abs(bodies["vel"]).max() > 0.0  # the sweeps did something
+
+
+def test_no_colour_has_two_contacts_on_one_moving_body():
+    for case in CASES:
+        contacts, bodies = CASES[case]()
+        colours = np.empty(len(contacts), dtype=np.int64)
+        count = colour(contacts, len(contacts), bodies, colours)
+        assert np.all((colours < COLOURS) <= (contacts["count"] == 2)), case
+        assert count <= COLOURS
+        for c in range(count):
+            moving = []
+            for i in np.flatnonzero(colours == c):
+                for side in ("a", "b"):
+                    if contacts[f"inv_mass_{side}"][i] or contacts[f"inv_moment_{side}"][i]:
+                        moving.append(contacts[side][i])
+            assert len(moving) == len(set(moving))
+
+
+def test_a_body_with_more_contacts_than_colours_has_the_rest_visited_alone():
+    contacts, bodies = fan(80)
+    colours = np.empty(len(contacts), dtype=np.int64)
+    colour(contacts, len(contacts), bodies, colours)
+    plank = 1  # the ground is body 0
+    on_plank = (contacts["a"] == plank) | (contacts["b"] == plank)
+    assert on_plank.sum() == 81  # the ground and 80 boxes
+    assert (colours[on_plank] < COLOURS).sum() == COLOURS
+    assert (colours == COLOURS).sum() == 81 - COLOURS
+
+
+def test_empty_and_tiny_contact_lists():
+    bodies = np.zeros(2, dtype=World().state.dtype)
+    for k in (0, 1):
+        contacts = np.zeros(k, dtype=CONTACT)
+        if k:
+            contacts["a"], contacts["b"], contacts["count"] = 0, 1, 1
+        coloured_sweeps(contacts, k, np.zeros(0, dtype=JOINT), bodies, 3)
+    assert not np.any(bodies["vel"])
+
+
+@pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64"), reason="x86 instructions")
+def test_the_lane_loop_compiles_to_vector_instructions():
+    # what the wide sweeps are for: numba (LLVM) turns the loop over a block's eight lanes into
+    # packed instructions (mulpd: several doubles at once), as long as the loop indexes the
+    # lanes with unsigned numbers and hands the array to no other function
+    numba = pytest.importorskip("numba")
+    from sandbox.solvers import wide
+
+    if not hasattr(wide.visit_block, "py_func"):
+        pytest.skip("compiling is off (SANDBOX_JIT=0)")
+    if numba.config.BOUNDSCHECK:
+        pytest.skip("bounds checks keep the loop one lane at a time")
+    fresh = numba.njit(wide.visit_block.py_func)  # not from the cache: its assembly is kept
+    fresh(np.zeros(wide.BLOCK), np.uint64(0))
+    assembly = fresh.inspect_asm(fresh.signatures[0])
+    packed = len(re.findall(r"\bv?mulpd\b", assembly))
+    single = len(re.findall(r"\bv?mulsd\b", assembly))
+    assert packed > 20 and single < packed, (packed, single)
