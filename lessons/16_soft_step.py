@@ -315,13 +315,13 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 
 # %% [markdown]
 # Both solvers' errors grow with the size of the problem. The iterative solver's sag grows
-# faster than the height, about as its square: 0.70, 5.7, 28 and 130 mm for bases 5, 10, 20 and
+# faster than the height, about as its square: 0.79, 7.0, 32 and 170 mm for bases 5, 10, 20 and
 # 40 (more rows, each carrying more weight, with the same 10 sweeps). Its chain stretch grows
 # about in proportion to the length: 5.0, 8.4, 17.9 and 31.7 mm for 5 to 40 links.
 #
-# With its defaults the soft step does no better on the pyramids: it sags more on the small
-# ones (2.0 against 0.70 mm at base 5, 7.6 against 5.7 at base 10) and about as much on the
-# large ones (30 against 28 mm at base 20, 123 against 130 mm at base 40). Its sag is the static
+# With its defaults the soft step does no better on the small pyramids: it sags more on them
+# (2.0 against 0.79 mm at base 5, 7.6 against 7.0 at base 10), about as much at base 20 (30
+# against 32 mm) and less at base 40 (123 against 170 mm). Its sag is the static
 # error of its springs (section 2), added up along the load path: every row of boxes is a row
 # of springs squeezed by the weight above it, which grows with the row's depth, so the top box
 # drops about four times as far each time the base doubles (2.0, 7.6, 30, 123 mm), as the
@@ -563,11 +563,11 @@ print_table(["masses (kg)", "soft settings", "hook joint: F/(m w^2) (mm)", "meas
 # the relax pass leaves some velocity, and the same joints get within 0.1% in 0.8 s (400 kg)
 # and 2.2 s (30 Hz).
 #
-# ## 3. Why substeps beat iterations at equal cost
+# ## 3. Substeps against iterations at equal cost
 #
 # A sweep of the iterative solver is one pass over the constraints. A substep of the soft step
-# is two passes over the contacts (solve, relax) plus integrating and moving the bodies: it
-# costs about two sweeps. (The joints are solved together, one linear solve per pass: section
+# is two passes over the contacts (solve, relax) plus integrating and moving the bodies: as
+# arithmetic, about two sweeps. (The joints are solved together, one linear solve per pass: section
 # 6.) What the substep buys:
 #
 # 1. **It moves the bodies.** Each constraint then sees its real, current error: a contact's
@@ -583,17 +583,17 @@ print_table(["masses (kg)", "soft settings", "hook joint: F/(m w^2) (mm)", "meas
 #    (7.5 Hz per substep at 60 steps per second, as Box2D since v3.1; at a quarter, Box2D
 #    v3.0's cap, a tall pyramid rings: section 6). The static error
 #    $F/(m\omega^2)$ falls as $1/f^2$, so at the cap as $1/S^2$; the iterative solver's sag falls
-#    as $1/N$ (lesson 09).
+#    as $1/N$ (lesson 09), faster once $N$ is large.
 #
 # Measured on the pyramid of base 20 (210 boxes): the largest drop of its top box in 1.5 s (the
 # largest, not the last, so that a pyramid which overshoots or has not settled yet is not
-# flattered) under the iterative solver with $N$ = 5, 10, 20, 40 sweeps and under the soft step
+# flattered) under the iterative solver with $N$ = 5 to 160 sweeps and under the soft step
 # with $S$ = 2, 4, 8, 16 substeps, `contact_hertz` at its cap $7.5\,S$ Hz; the cost is the
 # median time per step on this machine.
 
 # %%
 COST_BASE, COST_SECONDS = 20, 1.5
-SWEEPS, SUBSTEPS = (5, 10, 20, 40), (2, 4, 8, 16)
+SWEEPS, SUBSTEPS = (5, 10, 20, 40, 80, 160), (2, 4, 8, 16)
 cost_scene = pyramid(COST_BASE)
 cost = {("iterative", n): simulate(cost_scene, "iterative", COST_SECONDS, top_box(cost_scene),
                                    iterations=n) for n in SWEEPS}  # fmt: skip
@@ -623,16 +623,23 @@ fig.tight_layout()
 save_figure(fig, OUT / "substeps_vs_iterations.png", dpi=100)
 
 # %% [markdown]
-# Doubling the sweeps about halves the iterative sag (94, 42, 18, 7.2 mm: the $1/N$ of lesson
-# 09); doubling the substeps at the stiffness cap divides the soft sag by four (124, 30, 7.5,
-# 1.9 mm: the $1/S^2$ of the static error). So the two lines cross. Read the figure at equal
-# cost (one vertical line); in the table, $S$ substeps cost about as much as $N = 2.5\,S$
-# sweeps (from 4% less to 11% more when this was written). With 2 substeps, whose contacts
-# are 15 Hz springs, the soft step sags more than 5 sweeps do (124 against 94 mm). At the
-# defaults' cost, 4 substeps against 10 sweeps, the two are close (30 against 42 mm). From 8 substeps on, substeps win, and
-# by more the more you spend: 8 substeps sag 7.5 mm where 20 sweeps sag 18, and 40 sweeps,
-# which cost more than 8 substeps, still sag 7.2; 16 substeps sag 1.9 mm where 40 sweeps sag
-# 7.2. (The ms per step vary by tens of percent from run to run on a shared machine;
+# Doubling the sweeps halves the iterative sag or better (107, 48, 21, 8.0, 2.7 and 0.62 mm for
+# $N$ = 5 to 160: the $1/N$ of lesson 09, then faster); doubling the substeps at the stiffness
+# cap divides the soft sag by four (124, 30, 7.5, 1.9 mm: the $1/S^2$ of the static error). Per
+# unit of arithmetic, substeps should win. On this engine they do not, at any cost measured:
+# read the figure at equal cost (one vertical line), and the iterative line lies below the soft
+# one everywhere. 4 substeps sag 30 mm where 20 sweeps, which cost a little less, sag 21; 8
+# substeps sag 7.5 mm where 80 sweeps, about as costly, sag 2.7; 16 substeps sag 1.9 mm where
+# 160 sweeps, a little more costly, sag 0.62.
+#
+# The difference is the cost, not the sag. The iterative solver's sweeps visit eight contacts
+# at once, in vector instructions (lesson 09, `sandbox/solvers/wide.py`), so a substep costs
+# about as much as 8 or 9 of them (in the table: about 0.08 ms a substep, 0.009 ms a sweep),
+# not the 2 its arithmetic suggests: the soft step's passes still visit one contact at a time.
+# Box2D v3 colours its soft step's contacts the same way; this engine does not yet. When the
+# sweeps too visited one contact at a time, a substep cost about 2.5 sweeps and the lines
+# crossed at 8 substeps: 7.5 mm against 18 mm for 20 sweeps, at about the same cost. (The ms
+# per step vary by tens of percent from run to run on a shared machine;
 # `python benchmarks/run.py` measures the cost properly.)
 #
 # ## 4. The relax and restitution passes
@@ -906,12 +913,12 @@ for name, view in views.items():
 # What the runs show (this engine's solvers at 10 iterations, pymunk at 10):
 #
 # - **pyramid of 40**: pairwise collapses (the top box is 19 m down after 2 s); shock
-#   propagation holds it (its top box even rose 3.8 mm in 2 s); iterative sags 13.0 cm and
-#   stays there; pymunk 23.7 cm after 3 s, still sinking. The soft step sags 12.3 cm, about as
-#   much as the iterative solver, and stays there too (between 123.2 and 123.3 mm over the
-#   last 5 s); its top box moved 3.0 cm sideways in 10 s, all of it while the pyramid settled
-#   (section 6), where the iterative one moved 1 mm. In the animation the soft and iterative
-#   pyramids lie almost on top of each other.
+#   propagation holds it (its top box even rose 15 mm in 2 s); iterative sags 17.0 cm and
+#   still creeps (from 164 to 172 mm over the last 5 s); pymunk 23.7 cm after 3 s, still
+#   sinking. The soft step sags 12.3 cm, less than the iterative solver, and stays there
+#   (between 123.2 and 123.3 mm over the last 5 s); its top box moved 3.0 cm sideways in 10 s,
+#   all of it while the pyramid settled (section 6), where the iterative one moved 5 mm. In the
+#   animation the soft and iterative pyramids lie almost on top of each other.
 # - **chain**: soft under 0.01 mm, iterative and shock 17.9 mm (shock propagation only
 #   changes how contacts are solved: for joints it is the iterative solver, its line lies
 #   under the iterative one), pymunk 201 mm, pairwise comes apart.
@@ -963,7 +970,7 @@ print_table(["pyramid of 40", "lowest top drop, 1-2 s (mm)", "highest top drop, 
 # settling (it ends between 123.2 and 123.3 mm, section 5), and it moved 31 mm sideways by 2 s,
 # while it settled; by 10 s it had crept back to 30 mm (0.15 mm/s). With 8 substeps it is at
 # rest within a second, 30.2 mm down (to 0.06 mm from 1 s to 2 s): a quarter of the defaults'
-# 123 mm, as $1/f^2$ predicts, and less than a quarter of the iterative solver's 130 mm. Its top
+# 123 mm, as $1/f^2$ predicts, and less than a fifth of the iterative solver's 170 mm. Its top
 # box moved 12 mm sideways. The price is more time per step (the table).
 #
 # The last row goes the other way, and past Box2D: `hold_ratio` 0.5 lets every box hold still the
@@ -1302,17 +1309,19 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 #
 # - **the soft step wins** on long chains (under 0.01 mm against 17.9 mm) and on heavy loads on
 #   chains (0.11 mm where the iterative chain comes apart): its joints are 120 Hz springs,
-#   solved together, velocities and positions. It also wins on stacks at about equal cost once it gets 8 substeps
-#   (section 3: 7.5 mm against 18 mm for 20 sweeps on the pyramid of base 20, 1.9 mm against
-#   7.2 for 40), and on the 400:1 boxes (0.1 mm each against the iterative solver's 5 mm slop),
-#   where it holds the light box still as shock propagation does;
-# - **it ties** on pyramids with the defaults, where its contacts are capped at 30 Hz: 30
-#   against 28 mm at base 20, 123 against 130 mm at base 40, both at rest; it sags more on small
-#   stacks (2.0 against 0.70 mm at base 5);
-# - **it loses** on bounces, which fall shorter (apexes 3%, 10%, 26% below $e^{2n}h$, against
-#   0.3%, 6%, 13%). 8 substeps make the pyramid four times stiffer (3.0 cm down), at a higher
-#   cost per step;
-# - **the iterative solver** sags 13 cm on the pyramid of 40 and stretches the chain 18 mm, and
+#   solved together, velocities and positions. It also wins on the tall pyramid with the
+#   defaults (123 against 170 mm at base 40, at rest where the iterative one still creeps), and
+#   on the 400:1 boxes (0.1 mm each against the iterative solver's 5 mm slop), where it holds
+#   the light box still as shock propagation does;
+# - **it ties** on the pyramid of base 20 with the defaults, where its contacts are capped at
+#   30 Hz (30 against 32 mm);
+# - **it loses** on small stacks (2.0 against 0.79 mm at base 5), on bounces, which fall
+#   shorter (apexes 3%, 10%, 26% below $e^{2n}h$, against 0.3%, 6%, 13%), and on time: per unit
+#   of arithmetic its substeps sag less than sweeps, but the iterative sweeps visit eight
+#   contacts at once and its passes one, so at equal time the iterative solver sagged less at
+#   every cost measured (section 3). 8 substeps make the pyramid four times stiffer (3.0 cm
+#   down), at a higher cost per step;
+# - **the iterative solver** sags 17 cm on the pyramid of 40 and stretches the chain 18 mm, and
 #   the heavy chain comes apart.
 #
 # So with the defaults neither solver is better everywhere, and the contract's `iterative`

@@ -34,10 +34,11 @@ a heavy one m_eff is about the light body's, so the heavy body's weight sinks it
 slowly. A body resting on one more than ``settings.hold_ratio`` times lighter treats it as
 immovable (:func:`hold_under_heavy_loads`, shock propagation where the masses differ that much).
 
-Why substeps beat iterations at equal cost: an iteration shares one velocity error out among
-the constraints; a substep also moves the bodies, so each constraint then sees its real,
-current error (the separation is recomputed from the bodies' moves), and the gravity a stack
-must carry arrives in small pieces.
+Why substeps can beat iterations at equal arithmetic: an iteration shares one velocity error
+out among the constraints; a substep also moves the bodies, so each constraint then sees its
+real, current error (the separation is recomputed from the bodies' moves), and the gravity a
+stack must carry arrives in small pieces. (At equal time they do not on this engine yet: the
+iterative sweeps visit eight contacts at once, :mod:`sandbox.solvers.wide`, these passes one.)
 """
 
 from __future__ import annotations
