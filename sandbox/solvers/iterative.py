@@ -34,16 +34,18 @@ import math
 
 import numpy as np
 
-from sandbox.jit import njit
+from sandbox.jit import JIT_ENABLED, njit
 from sandbox.joints.solve import solve_joint_velocities
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
 from sandbox.solvers.common import masses, normal_speed
 from sandbox.solvers.impulses import block_totals, friction_total, normal_total
 from sandbox.solvers.wide import (
     COLOURS,
+    LANES,
     buffers,
     colour,
     pack,
+    place,
     put_velocities,
     take_velocities,
     unpack,
@@ -210,9 +212,19 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
         return
     lanes, owners, starts = buffers(k, count)
     empty = len(bodies)  # the row of velocities that empty lanes read and write
-    blocks = pack(contacts, k, colours, count, lanes, owners, empty, starts)
+    blocks = place(contacts, k, colours, count, owners, empty, starts)
     alone = np.nonzero(colours == COLOURS)[0]
     half = (len(alone) + 1) // 2
+    if not JIT_ENABLED:  # uncompiled, lanes buy nothing: the same visits one by one, same numbers
+        for _ in range(n):
+            solve_joint_velocities(joints, bodies, True)
+            for q in range(blocks * LANES):  # colour by colour
+                if owners[0, q] >= 0:
+                    visit_contact(contacts[owners[0, q]], bodies, True)
+            for q in range(len(alone)):
+                visit_contact(contacts[alone[visit(q, half)]], bodies, True)
+        return
+    pack(contacts, lanes, owners, blocks)
     velocities = np.zeros((empty + 1, 3))
     take_velocities(bodies, velocities)
     for _ in range(n):
@@ -223,13 +235,19 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
         for c in range(count):
             visit_colour(lanes, owners, starts[c], starts[c + 1], velocities)
         for q in range(len(alone)):
-            contact = contacts[alone[visit(q, half)]]
-            v, w = velocities[contact["a"]], velocities[contact["b"]]
-            va, vb = visit_points(contact, (v[0], v[1], v[2]), (w[0], w[1], w[2]), True)
-            v[0], v[1], v[2] = va
-            w[0], w[1], w[2] = vb
+            visit_rows(contacts[alone[visit(q, half)]], velocities)
     put_velocities(velocities, bodies)
     unpack(contacts, lanes, owners, blocks)
+
+
+@njit(inline="always")
+def visit_rows(c, velocities) -> None:
+    """:func:`visit_points` (accumulated) with the bodies' velocities in rows of
+    ``velocities`` (vx, vy, w)."""
+    v, w = velocities[c["a"]], velocities[c["b"]]
+    va, vb = visit_points(c, (v[0], v[1], v[2]), (w[0], w[1], w[2]), True)
+    v[0], v[1], v[2] = va
+    w[0], w[1], w[2] = vb
 
 
 @njit

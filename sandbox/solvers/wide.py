@@ -15,7 +15,7 @@ Each visit is the very same arithmetic as :func:`sandbox.solvers.iterative.sweep
 (:mod:`sandbox.solvers.impulses`, :func:`~sandbox.math2d.speed_along`,
 :func:`~sandbox.math2d.push_along`); only the order of the contacts differs (colour by colour).
 
-Layout (:func:`pack`): each colour's contacts fill blocks of ``LANES``; a block holds each
+Layout (:func:`place`, :func:`pack`): each colour's contacts fill blocks of ``LANES``; a block holds each
 field of its eight contacts side by side, ``LANES`` numbers per field (``lanes[block][field]
 [lane]``, as Box2D's ``b2ContactConstraintSIMD``), so that lane ``l`` of field ``F`` of the
 block starting at ``i`` is ``lanes[i + F + l]``. A colour's last block is filled with empty
@@ -110,8 +110,8 @@ def buffers(k: int, count: int):
 
 
 @njit
-def pack(contacts, k: int, colours, count: int, lanes, owners, empty: int, starts) -> int:
-    """Copy the first ``k`` contacts into ``lanes`` colour by colour, contact i of its colour in
+def place(contacts, k: int, colours, count: int, owners, empty: int, starts) -> int:
+    """Where each of the first ``k`` contacts goes, colour by colour: contact i of its colour in
     block i // LANES, lane i % LANES (:mod:`module layout <sandbox.solvers.wide>`);
     ``owners[:, block * LANES + lane]``: the contact's index in ``contacts`` and its bodies a
     and b (an empty lane: -1 and twice ``empty``, a row of velocities no body uses);
@@ -133,6 +133,12 @@ def pack(contacts, k: int, colours, count: int, lanes, owners, empty: int, start
             q = starts[c] * LANES + filled[c]
             owners[0, q], owners[1, q], owners[2, q] = i, contacts[i]["a"], contacts[i]["b"]
             filled[c] += 1
+    return blocks
+
+
+@njit
+def pack(contacts, lanes, owners, blocks: int) -> None:
+    """Copy the contacts into their lanes (:func:`place`); empty lanes get zeros."""
     for q in range(blocks * LANES):
         i = np.uint64(q // LANES) * np.uint64(BLOCK) + np.uint64(q % LANES)
         if owners[0, q] < 0:
@@ -140,7 +146,6 @@ def pack(contacts, k: int, colours, count: int, lanes, owners, empty: int, start
                 lanes[i + np.uint64(f * LANES)] = 0.0
         else:
             pack_lane(contacts[owners[0, q]], lanes, i)
-    return blocks
 
 
 @njit
