@@ -162,6 +162,14 @@ def sweep(contacts, k: int, bodies, accumulate: bool) -> None:
         visit_contact(contacts[visit(q, half)], bodies, accumulate)
 
 
+@njit
+def sweeps(contacts, k: int, joints, bodies, accumulate: bool, n: int) -> None:
+    """``n`` sweeps one contact at a time: in each, the joints, then :func:`sweep`."""
+    for _ in range(n):
+        solve_joint_velocities(joints, bodies, accumulate)
+        sweep(contacts, k, bodies, accumulate)
+
+
 @njit(inline="always")
 def visit_contact(c, bodies, accumulate: bool) -> None:
     """One visit of contact ``c`` (:func:`visit_points`) with its bodies' velocities."""
@@ -206,9 +214,7 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     colours = np.empty(k, dtype=np.int64)
     count = colour(contacts, k, bodies, colours)
     if count == 0:  # no two-point contact: one by one, as sweep() does (the same numbers)
-        for _ in range(n):
-            solve_joint_velocities(joints, bodies, True)
-            sweep(contacts, k, bodies, True)
+        sweeps(contacts, k, joints, bodies, True, n)
         return
     lanes, owners, starts = buffers(k, count)
     empty = len(bodies)  # the row of velocities that empty lanes read and write
@@ -298,15 +304,12 @@ def solve(contacts, k: int, joints, bodies, context) -> None:
     if ctx["accumulate"]:
         coloured_sweeps(contacts, k, joints, bodies, n)
     else:
-        for _ in range(n):
-            solve_joint_velocities(joints, bodies, False)
-            sweep(contacts, k, bodies, False)
+        sweeps(contacts, k, joints, bodies, False, n)
     if k == 0 or not large_step(context):
         return
     tolerance = RESIDUAL * ctx["slop"] * ctx["inv_dt"]  # m/s
     for _ in range((MAX_SWEEPS - 1) * n):
         if normal_residual(contacts, k, bodies) <= tolerance:
             break
-        solve_joint_velocities(joints, bodies, ctx["accumulate"])
-        sweep(contacts, k, bodies, ctx["accumulate"])
+        sweeps(contacts, k, joints, bodies, ctx["accumulate"], 1)
         ctx["sweeps"] += 1

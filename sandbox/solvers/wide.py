@@ -29,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.math2d import push_along, speed_along
+from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
 from sandbox.solvers.impulses import block_totals, friction_total, normal_total
 
 LANES = 8  # contacts a block holds: one AVX-512 register of doubles
@@ -158,11 +158,7 @@ def pack_lane(c, lanes, i) -> None:
     k, m = c["block_k"], c["block_mass"]
     lanes[i + K11], lanes[i + K12], lanes[i + K22] = k[0], k[1], k[2]
     lanes[i + M11], lanes[i + M12], lanes[i + M22] = m[0], m[1], m[2]
-    for j, base in ((0, i + P0), (1, i + P1)):
-        if j >= c["count"]:  # an unused point: all zero, it pushes nothing
-            for f in range(FIELDS_PER_POINT):
-                lanes[base + np.uint64(f * LANES)] = 0.0
-            continue
+    for j, base in ((0, i + P0), (1, i + P1)):  # both points used: only those get a colour
         p = c["points"][j]
         lanes[base + RN_A], lanes[base + RN_B] = p["rn_a"], p["rn_b"]
         lanes[base + RT_A], lanes[base + RT_B] = p["rt_a"], p["rt_b"]
@@ -276,13 +272,11 @@ def take_velocities(bodies, velocities) -> None:
     """Each body's (vx, vy, w) into its row of ``velocities`` (the sweeps read them there,
     three numbers side by side, rather than from the body's whole record)."""
     for i in range(len(bodies)):
-        v = bodies[i]["vel"]
-        velocities[i, 0], velocities[i, 1], velocities[i, 2] = v[0], v[1], bodies[i]["omega"]
+        velocities[i, 0], velocities[i, 1], velocities[i, 2] = velocity_of(bodies, i)
 
 
 @njit
 def put_velocities(velocities, bodies) -> None:
     """The rows of ``velocities`` back into the bodies."""
     for i in range(len(bodies)):
-        v = bodies[i]["vel"]
-        v[0], v[1], bodies[i]["omega"] = velocities[i, 0], velocities[i, 1], velocities[i, 2]
+        set_velocity(bodies, i, (velocities[i, 0], velocities[i, 1], velocities[i, 2]))
