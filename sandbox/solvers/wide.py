@@ -250,8 +250,13 @@ def visit_block(lanes, start) -> None:
 @njit
 def visit_colour(lanes, owners, first: int, end: int, velocities) -> None:
     """One visit of every contact of a colour (blocks ``first`` to ``end``): the bodies'
-    velocities (``velocities``, a row (vx, vy, w) per body) into the lanes, the visits, the
-    velocities back."""
+    velocities (``velocities``, a row (vx, vy, w) per body) into all the colour's lanes, the
+    visits, the velocities back. No two contacts of a colour share a moving body, so this is
+    the same as copying in and out block by block; but the vector loads of a block's
+    velocities, right after the eight single stores that put them there, would wait for those
+    stores to finish (the processor cannot forward several stores into one load): copied for
+    the whole colour first, a sweep of the settled pyramid of base 40 took 25 us instead of
+    29."""
     for block in range(first, end):
         start = np.uint64(block) * np.uint64(BLOCK)
         for lane in range(LANES):
@@ -259,7 +264,10 @@ def visit_colour(lanes, owners, first: int, end: int, velocities) -> None:
             v, w = velocities[owners[1, q]], velocities[owners[2, q]]
             lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = v[0], v[1], v[2]
             lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = w[0], w[1], w[2]
-        visit_block(lanes, start)
+    for block in range(first, end):
+        visit_block(lanes, np.uint64(block) * np.uint64(BLOCK))
+    for block in range(first, end):
+        start = np.uint64(block) * np.uint64(BLOCK)
         for lane in range(LANES):
             q, i = block * LANES + lane, start + np.uint64(lane)
             v, w = velocities[owners[1, q]], velocities[owners[2, q]]
