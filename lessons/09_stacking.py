@@ -468,7 +468,7 @@ for it in (4, 8, 32):
 #
 # Each sweep carries the weight one contact further and warm starting keeps last step's
 # progress, so the error left shrinks roughly in proportion to the number of sweeps: about half
-# with twice as many. The table gives 3.35 cm, 1.55 cm (x 0.46) and 0.28 cm at 32 (x 0.08 for 8
+# with twice as many. The table gives 3.33 cm, 1.55 cm (x 0.47) and 0.28 cm at 32 (x 0.08 for 8
 # times the sweeps).
 #
 # </details>

@@ -315,16 +315,16 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 
 # %% [markdown]
 # Both solvers' errors grow with the size of the problem. The iterative solver's sag grows
-# faster than the height, about as its square: 0.79, 7.0, 32 and 170 mm for bases 5, 10, 20 and
+# faster than the height, about as its square: 0.79, 7.0, 32 and 174 mm for bases 5, 10, 20 and
 # 40 (more rows, each carrying more weight, with the same 10 sweeps). Its chain stretch grows
 # about in proportion to the length: 5.0, 8.4, 17.9 and 31.7 mm for 5 to 40 links.
 #
 # With its defaults the soft step does no better on the small pyramids: it sags more on them
 # (2.0 against 0.79 mm at base 5, 7.6 against 7.0 at base 10), about as much at base 20 (30
-# against 32 mm) and less at base 40 (123 against 170 mm). Its sag is the static
+# against 32 mm) and less at base 40 (124 against 174 mm). Its sag is the static
 # error of its springs (section 2), added up along the load path: every row of boxes is a row
 # of springs squeezed by the weight above it, which grows with the row's depth, so the top box
-# drops about four times as far each time the base doubles (2.0, 7.6, 30, 123 mm), as the
+# drops about four times as far each time the base doubles (2.0, 7.6, 30, 124 mm), as the
 # square of the height. At the defaults those springs are soft: the contacts between boxes run
 # at 30 Hz, not the 60 Hz of `contact_hertz` (the cap of section 3). Joints have no such cap
 # (they are 120 Hz springs, solved all together, and the position stage after the substeps
@@ -913,11 +913,11 @@ for name, view in views.items():
 # What the runs show (this engine's solvers at 10 iterations, pymunk at 10):
 #
 # - **pyramid of 40**: pairwise collapses (the top box is 19 m down after 2 s); shock
-#   propagation holds it (its top box even rose 15 mm in 2 s); iterative sags 17.0 cm and
-#   still creeps (from 164 to 172 mm over the last 5 s); pymunk 23.7 cm after 3 s, still
-#   sinking. The soft step sags 12.3 cm, less than the iterative solver, and stays there
-#   (between 123.2 and 123.3 mm over the last 5 s); its top box moved 3.0 cm sideways in 10 s,
-#   all of it while the pyramid settled (section 6), where the iterative one moved 5 mm. In the
+#   propagation holds it (its top box even rose 15 mm in 2 s); iterative sags 17.4 cm and
+#   still creeps (from 170 to 174 mm over the last 5 s); pymunk 23.7 cm after 3 s, still
+#   sinking. The soft step sags 12.4 cm, less than the iterative solver, and stays there
+#   (between 124.0 and 124.2 mm over the last 5 s); its top box moved 3.5 cm sideways in 10 s,
+#   all of it while the pyramid settled (section 6), where the iterative one moved 8.6 cm. In the
 #   animation the soft and iterative pyramids lie almost on top of each other.
 # - **chain**: soft under 0.01 mm, iterative and shock 17.9 mm (shock propagation only
 #   changes how contacts are solved: for joints it is the iterative solver, its line lies
@@ -932,8 +932,8 @@ for name, view in views.items():
 #
 # **Tall stacks sag with the defaults.** With 4 substeps the contacts are capped at
 # $1/(8h)$ = 30 Hz, half the 60 Hz that `contact_hertz` asks for, and the pyramid of base 40
-# sags 12.3 cm, no better than the iterative solver. Why not allow stiffer contacts at 4
-# substeps? The soft step solves each contact once per substep, in turn, with the others'
+# sags 12.4 cm, not much better than the iterative solver's 17.4 cm. Why not allow stiffer
+# contacts at 4 substeps? The soft step solves each contact once per substep, in turn, with the others'
 # impulses of the moment: for one spring that is exact implicit Euler (section 2), for a stack
 # of springs only an approximation of it, and the approximation gets worse as $h\omega$ grows.
 # Box2D v3.0 capped the contacts at a quarter of the substep rate ($h\omega = \pi/2$ between
@@ -942,7 +942,7 @@ for name, view in views.items():
 # below its start, and the ringing walked the upper rows 1.3 m sideways. Box2D v3.1's own
 # solver, with its cap set back to a quarter, rings the same way (its top box between 3 mm
 # above and 60 mm below its start, 0.46 m sideways); Box2D v3.1 moved the cap to an eighth
-# ($h\omega = \pi/4$), where both rest: this engine's top box 123 mm down, Box2D's 116 mm. (The
+# ($h\omega = \pi/4$), where both rest: this engine's top box 124 mm down, Box2D's 116 mm. (The
 # cap is not a setting, so this lesson cannot rerun the quarter; those numbers were measured
 # when the cap changed.)
 #
@@ -967,10 +967,10 @@ print_table(["pyramid of 40", "lowest top drop, 1-2 s (mm)", "highest top drop, 
 
 # %% [markdown]
 # With the defaults the top box is between 122.3 and 124.3 mm down from 1 s to 2 s, still
-# settling (it ends between 123.2 and 123.3 mm, section 5), and it moved 31 mm sideways by 2 s,
-# while it settled; by 10 s it had crept back to 30 mm (0.15 mm/s). With 8 substeps it is at
+# settling (it ends between 124.0 and 124.2 mm, section 5), and it moved 33 mm sideways by 2 s,
+# while it settled; by 10 s it had crept on to 35 mm (0.28 mm/s). With 8 substeps it is at
 # rest within a second, 30.2 mm down (to 0.06 mm from 1 s to 2 s): a quarter of the defaults'
-# 123 mm, as $1/f^2$ predicts, and less than a fifth of the iterative solver's 170 mm. Its top
+# 124 mm, as $1/f^2$ predicts, and less than a fifth of the iterative solver's 174 mm. Its top
 # box moved 12 mm sideways. The price is more time per step (the table).
 #
 # The last row goes the other way, and past Box2D: `hold_ratio` 0.5 lets every box hold still the
@@ -1004,7 +1004,7 @@ print_table(["pyramid of 40, soft", "share of the weight the ground carries"],
             [(f"hold_ratio {r}", ground_share(r)) for r in (10.0, 0.5)], 3)  # fmt: skip
 
 # %% [markdown]
-# With the default the ground carries the whole pyramid (1.002: it still settles by a hair at
+# With the default the ground carries the whole pyramid (1.003: it still settles by a hair at
 # 2 s); held everywhere, 0.049 of it: the 40 boxes of the bottom row out of 820.
 #
 # **The chains.** The issue asks for a worst stretch under 5 mm (20 links) and under 1 cm (the
@@ -1284,9 +1284,9 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # - **soft, hold off** (`hold_ratio` 0, Box2D's soft step): from 1 s to 7 s the heavy box
 #   sits 65 to 69 mm deep in the light one (the left plot) and the light box about as deep in
 #   the ground, while the light box is worked out sideways, slowly at first and then faster,
-#   the heavy box tilting over it, until it is out from under at 8.6 s (the table's worst
+#   the heavy box tilting over it, until it is out from under at 8.65 s (the table's worst
 #   values come from the landing in the first half second, 84 mm into the ground, and from
-#   after 8.6 s, when both boxes tip over);
+#   after 8.65 s, when both boxes tip over);
 # - **with 8 substeps** it stays under; the light box sinks 20 mm into the ground and the
 #   heavy one 22 mm into it (the issue's bound is 2 cm);
 # - **and with the position pass off** it stays under too, but the heavy box ends 136 mm deep in
@@ -1310,7 +1310,7 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # - **the soft step wins** on long chains (under 0.01 mm against 17.9 mm) and on heavy loads on
 #   chains (0.11 mm where the iterative chain comes apart): its joints are 120 Hz springs,
 #   solved together, velocities and positions. It also wins on the tall pyramid with the
-#   defaults (123 against 170 mm at base 40, at rest where the iterative one still creeps), and
+#   defaults (124 against 174 mm at base 40, at rest where the iterative one still creeps), and
 #   on the 400:1 boxes (0.1 mm each against the iterative solver's 5 mm slop), where it holds
 #   the light box still as shock propagation does;
 # - **it ties** on the pyramid of base 20 with the defaults, where its contacts are capped at

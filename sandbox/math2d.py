@@ -126,7 +126,7 @@ def set_velocity(bodies, i: int, v: tuple) -> None:
     b["omega"] = v[2]
 
 
-@njit
+@njit(inline="always")  # compiled into its callers: the wide position passes vectorise it
 def turn_small(c: float, s: float, d: float) -> tuple[float, float]:
     """(c, s) turned by about d radians, for the small turns within the position passes: by
     atan(d), ((c, s) + d (-s, c)) / sqrt(1 + d^2), which is d to within d^3 / 3, without a
@@ -136,11 +136,32 @@ def turn_small(c: float, s: float, d: float) -> tuple[float, float]:
     return (c - s * d) * scale, (s + c * d) * scale
 
 
+@njit(inline="always")
+def pose_of(body) -> tuple[float, float, float, float, float]:
+    """A body's pose for the position passes: (x, y) of its centre of mass (m), its (cos, sin)
+    and the turn the passes gave it so far (rad)."""
+    com, cs = body["com"], body["cs"]
+    return com[0], com[1], cs[0], cs[1], body["turn"]
+
+
+@njit(inline="always")
+def set_pose(body, pose: tuple) -> None:
+    """Write a pose (:func:`pose_of`) back to the body."""
+    com, cs = body["com"], body["cs"]
+    com[0], com[1], cs[0], cs[1], body["turn"] = pose
+
+
+@njit(inline="always")
+def nudged(pose: tuple, dx: float, dy: float, d: float) -> tuple:
+    """A pose (:func:`pose_of`) moved by (dx, dy) (m) and turned by d (rad, when not 0)."""
+    x, y, c, s, turn = pose
+    if d != 0.0:
+        c, s = turn_small(c, s, d)
+        turn += d
+    return x + dx, y + dy, c, s, turn
+
+
 @njit
 def nudge(body, dx: float, dy: float, d: float) -> None:
     """Move a body by (dx, dy) and turn it by d radians (a position-pass correction)."""
-    body["com"][0] += dx
-    body["com"][1] += dy
-    if d != 0.0:
-        body["turn"] += d
-        body["cs"][0], body["cs"][1] = turn_small(body["cs"][0], body["cs"][1], d)
+    set_pose(body, nudged(pose_of(body), dx, dy, d))

@@ -29,38 +29,38 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox.jit import njit
+from sandbox.jit import JIT_ENABLED, njit
 from sandbox.joints.positions_together import solve_joint_positions_together
 from sandbox.joints.solve import solve_joint_positions
-from sandbox.math2d import cross, effective_mass, nudge, rotate
+from sandbox.math2d import cross, effective_mass, nudge, pose_of, set_pose
 from sandbox.orientation import turn_bodies
-from sandbox.solvers.iterative import visit
+from sandbox.solvers.impulses import push_point, separation_of
 from sandbox.solvers.shock import contact_layers, hold_lower, touching
 from sandbox.solvers.soft import excess_depth
+from sandbox.solvers.wide_positions import plan, put_poses, take_poses, visit_colour
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
 METHODS = ("half", "mass_weighted", "impulse")  # settings.penetration, in code order
-MAX_CORRECTION = 0.2  # m: the largest push of one point in one pass (as Box2D)
 HOLD_RATIO = 2.0  # layered passes hold a lower body only under one more than this times heavier
 
 
 @njit
 def separation(c, p, bodies) -> tuple[float, float, float, float, float]:
     """Current separation of a contact point (m, < 0 overlapping), and its arms r_a, r_b."""
-    a, b = bodies[c["a"]], bodies[c["b"]]
-    cs_a, local_a, com_a = a["cs"], p["local_a"], a["com"]
-    cs_b, local_b, com_b = b["cs"], p["local_b"], b["com"]
-    rax, ray = rotate(cs_a[0], cs_a[1], local_a[0], local_a[1])
-    rbx, rby = rotate(cs_b[0], cs_b[1], local_b[0], local_b[1])
-    dx = (com_b[0] + rbx) - (com_a[0] + rax)
-    dy = (com_b[1] + rby) - (com_a[1] + ray)
-    n = c["normal"]
-    return -p["depth"] + dx * n[0] + dy * n[1], rax, ray, rbx, rby
+    return separation_of(
+        pose_of(bodies[c["a"]]),
+        pose_of(bodies[c["b"]]),
+        p["local_a"],
+        p["local_b"],
+        c["normal"],
+        p["depth"],
+    )
 
 
 @njit
-def position_order(contacts, k: int, bodies, layered: bool, gap: float):
-    """The order the passes visit the contacts, and each body's layer.
+def position_order(contacts, k: int, bodies, layered: bool, gap: float, bounds, wide: bool):
+    """``((order, layer), lanes)``: the order the passes visit the contacts, each body's layer,
+    and the lanes of the wide passes (``wide``: :func:`wide_position_impulses`; else empty).
 
     Layered (``settings.robust_positions``, shock propagation on positions): bodies are sorted
     into layers from the fixed ones up (:func:`sandbox.solvers.shock.contact_layers`) and the
@@ -68,21 +68,35 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float):
     contact margin without what a large dt adds to it). In a contact between two layers where
     the upper body is much the heavier, only it moves (:func:`holds`): nothing pushes a light
     box out from under a heavy one, or a box into the ground. Otherwise every body
-    is in one layer and the contacts are visited in the velocity sweeps' order
-    (:func:`sandbox.solvers.iterative.visit`)."""
+    is in one layer and the contacts are visited colour by colour, then the others in the
+    velocity sweeps' order (:func:`sandbox.solvers.wide_positions.plan`); ``bounds`` = (slop,
+    push) (m), as :func:`allowed_separation`."""
     if not layered:
-        half = (k + 1) // 2
-        order = np.empty(k, dtype=np.int64)
-        for q in range(k):
-            order[q] = visit(q, half)
-        return order, np.zeros(bodies.shape[0], dtype=np.int64)
+        allowed = allowed_separations(contacts, k if wide else 0, bounds)
+        order, lanes, owners, starts, alone = plan(contacts, k, bodies, allowed, wide)
+        layering = order, np.zeros(bodies.shape[0], dtype=np.int64)
+        return layering, (lanes, owners, starts, alone)
     layer = contact_layers(contacts, k, bodies, gap)
     n = bodies.shape[0]
     key = np.empty(k, dtype=np.int64)
     for i in range(k):
         la, lb = min(layer[contacts[i]["a"]], n), min(layer[contacts[i]["b"]], n)
         key[i] = 2 * max(la, lb) + (la == lb)  # (0, 1), then (1, 1), then (1, 2), ...
-    return counting_order(key, 2 * n + 2), layer
+    none = np.zeros(0, dtype=np.int64)
+    lanes = (np.zeros(0), np.zeros((3, 0), dtype=np.int64), np.zeros(1, dtype=np.int64), none)
+    return (counting_order(key, 2 * n + 2), layer), lanes
+
+
+@njit
+def allowed_separations(contacts, k: int, bounds):
+    """(k, 2): :func:`allowed_separation` of each point of the first ``k`` contacts (m)."""
+    slop, push = bounds
+    allowed = np.zeros((k, 2))
+    for i in range(k):
+        c = contacts[i]
+        for j in range(c["count"]):
+            allowed[i, j] = allowed_separation(c, c["points"][j], slop, push)
+    return allowed
 
 
 @njit
@@ -248,7 +262,6 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
         a, b = bodies[c["a"]], bodies[c["b"]]
         nx, ny = c["normal"][0], c["normal"][1]
         mass, held = position_masses(c, bodies, layer)
-        im_a, ii_a, im_b, ii_b = mass
         if held:
             e = [0.0, 0.0]
             arms = [0.0] * 8
@@ -265,21 +278,37 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
             continue
         for j in range(c["count"]):
             p = c["points"][j]
-            sep, rax, ray, rbx, rby = separation(c, p, bodies)
+            point = (p["local_a"], p["local_b"], p["depth"], allowed_separation(c, p, slop, push))
+            pose_a, pose_b, sep, pushed = push_point(
+                pose_of(a), pose_of(b), mass, (nx, ny), point, beta
+            )
             worst = min(worst, sep)
-            gap = sep - allowed_separation(c, p, slop, push)
-            error = min(max(beta * gap, -MAX_CORRECTION), 0.0)
-            if error == 0.0:
-                continue  # within the slop: nothing to push
-            rn_a, rn_b = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
-            k_n = effective_mass(im_a, ii_a, im_b, ii_b, rn_a, rn_b)
-            if k_n <= 0.0:
-                continue
-            lam = -error / k_n  # slides, "Collision Equation" step 1, on positions
-            moved = True
-            nudge(a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * rn_a * lam)
-            nudge(b, im_b * lam * nx, im_b * lam * ny, ii_b * rn_b * lam)
+            if pushed:
+                moved = True
+                set_pose(a, pose_a)
+                set_pose(b, pose_b)
     return worst, moved
+
+
+@njit
+def wide_position_impulses(contacts, bodies, beta: float, bounds, layering, lanes):
+    """Option 3, one pass, as :func:`position_impulses` in the order of
+    :func:`position_order` (not layered): the colours' contacts eight at a time
+    (:func:`sandbox.solvers.wide_positions.visit_colour`), then the others one by one. The
+    same numbers, faster (:data:`sandbox.solvers.wide_positions.MEASURED`)."""
+    lanes, owners, starts, alone = lanes
+    worst, moved = 0.0, False
+    if len(starts) > 1:
+        poses = np.zeros((len(bodies) + 1, 5))
+        take_poses(bodies, poses)
+        for c in range(len(starts) - 1):
+            w, m = visit_colour(lanes, owners, starts[c], starts[c + 1], poses, beta)
+            worst, moved = min(worst, w), moved | m
+        put_poses(poses, bodies)
+    order, layer = layering
+    rest = order[len(order) - len(alone) :], layer
+    w, m = position_impulses(contacts, len(alone), bodies, beta, bounds, rest)
+    return min(worst, w), moved | m
 
 
 @njit
@@ -326,10 +355,15 @@ def fix_positions(
     gap = ctx["touch_margin"]
     triggers = (ctx["deep_overlap"], ctx["hold_heavier"])
     layered = robust and needs_layers(contacts, k, bodies, triggers, gap)
-    layering = position_order(contacts, k, bodies, layered, gap)
     bounds = (slop, push)
+    wide = JIT_ENABLED and method == IMPULSE and not layered and ctx["position_iterations"] > 0
+    layering, lanes = position_order(contacts, k, bodies, layered, gap, bounds, wide)
     for _ in range(ctx["position_iterations"]):
-        if method == IMPULSE:
+        if wide:
+            worst, moved = wide_position_impulses(
+                contacts, bodies, ctx["baumgarte"], bounds, layering, lanes
+            )
+        elif method == IMPULSE:
             worst, moved = position_impulses(
                 contacts, k, bodies, ctx["baumgarte"], bounds, layering
             )

@@ -1,12 +1,17 @@
 """The formulas of one visit of the iterative solver, on numbers alone (slides, "Collision
 Equation" and "Iterative Solver"; box2d-lite's ``Arbiter::ApplyImpulse``; Box2D's block
-solver). The sweeps over contact records (:mod:`sandbox.solvers.iterative`) and the wide
-sweeps over eight contacts at a time (:mod:`sandbox.solvers.wide`) both use these, so each
-formula has one source."""
+solver), and of one point of the penetration fix's position impulses (slides, "Solving
+Interpenetration", option 3; Box2D's non-linear Gauss-Seidel). The sweeps and passes over
+contact records (:mod:`sandbox.solvers.iterative`, :mod:`sandbox.penetration`) and the wide
+ones over eight contacts at a time (:mod:`sandbox.solvers.wide`,
+:mod:`sandbox.solvers.wide_positions`) both use these, so each formula has one source."""
 
 from __future__ import annotations
 
 from sandbox.jit import njit
+from sandbox.math2d import cross, effective_mass, nudged, rotate
+
+MAX_CORRECTION = 0.2  # m: the largest push of one point in one position pass (as Box2D)
 
 
 @njit(inline="always")
@@ -53,3 +58,38 @@ def block_totals(
                 if b1 < 0.0 or b2 < 0.0:
                     x1, x2 = a1, a2  # no solution: leave as is
     return x1, x2
+
+
+@njit(inline="always")
+def separation_of(pose_a, pose_b, local_a, local_b, n, depth: float):
+    """A contact point's current separation (m, < 0 overlapping) and its arms (r_a, r_b), from
+    the bodies' poses (:func:`sandbox.math2d.pose_of`): the point is kept in each body's
+    frame (``local_a``, ``local_b``) and the normal ``n`` fixed in the world, so separation =
+    -depth0 + ((c_b + R_b l_b) - (c_a + R_a l_a)) . n."""
+    rax, ray = rotate(pose_a[2], pose_a[3], local_a[0], local_a[1])
+    rbx, rby = rotate(pose_b[2], pose_b[3], local_b[0], local_b[1])
+    dx = (pose_b[0] + rbx) - (pose_a[0] + rax)
+    dy = (pose_b[1] + rby) - (pose_a[1] + ray)
+    return -depth + dx * n[0] + dy * n[1], rax, ray, rbx, rby
+
+
+@njit(inline="always")
+def push_point(pose_a, pose_b, mass, n, point, beta: float):
+    """One point's position impulse: lambda = -C / k with C = beta (separation - allowed),
+    clamped to [-``MAX_CORRECTION``, 0], moves and turns both bodies (p_a -= lambda n / m_a,
+    phi_a -= (r_a x lambda n) / I_a, the opposite for b). ``point`` = (local_a, local_b,
+    depth0 (m), allowed separation (m)); ``mass`` = (1/m_a, 1/I_a, 1/m_b, 1/I_b). Returns the
+    new poses, the separation before the push (m) and whether it pushed; no push (within
+    the allowed separation, or nothing can move) leaves the poses exactly as they were."""
+    local_a, local_b, depth, allowed = point
+    im_a, ii_a, im_b, ii_b = mass
+    nx, ny = n
+    sep, rax, ray, rbx, rby = separation_of(pose_a, pose_b, local_a, local_b, n, depth)
+    error = min(max(beta * (sep - allowed), -MAX_CORRECTION), 0.0)
+    rn_a, rn_b = cross(rax, ray, nx, ny), cross(rbx, rby, nx, ny)
+    k_n = effective_mass(im_a, ii_a, im_b, ii_b, rn_a, rn_b)
+    pushed = (error != 0.0) & (k_n > 0.0)
+    lam = -error / k_n if pushed else 0.0  # slides, "Collision Equation" step 1, on positions
+    pose_a = nudged(pose_a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * rn_a * lam)
+    pose_b = nudged(pose_b, im_b * lam * nx, im_b * lam * ny, ii_b * rn_b * lam)
+    return pose_a, pose_b, sep, pushed

@@ -60,11 +60,12 @@ BLOCK = FIELDS * LANES  # numbers per block
 
 
 @njit
-def colour(contacts, k: int, bodies, colours) -> int:
+def colour(contacts, k: int, bodies, colours, own: bool = False) -> int:
     """Give each of the first ``k`` contacts with two points the first colour none of its moving
     bodies has yet (greedy, in list order): ``colours[i]``, or ``COLOURS`` for a contact
     visited alone (one point, or no colour left). A body moves when the contact's copy of its
-    inverse mass or moment is not zero. Returns the number of colours used.
+    inverse mass or moment is not zero (``own``: the body's own, as the position passes use
+    them). Returns the number of colours used.
 
     One-point contacts stay out of the lanes: there half a lane's arithmetic (the second point,
     the block solver) would be wasted, and copying the contact in and out costs more than the
@@ -81,6 +82,9 @@ def colour(contacts, k: int, bodies, colours) -> int:
         a, b = c["a"], c["b"]
         move_a = c["inv_mass_a"] != 0.0 or c["inv_moment_a"] != 0.0
         move_b = c["inv_mass_b"] != 0.0 or c["inv_moment_b"] != 0.0
+        if own:  # a copy is the body's own or 0 (held): only a 0 needs a look at the body
+            move_a = move_a or bodies[a]["inv_mass"] != 0.0 or bodies[a]["inv_moment"] != 0.0
+            move_b = move_b or bodies[b]["inv_mass"] != 0.0 or bodies[b]["inv_moment"] != 0.0
         taken = (used[a] if move_a else 0) | (used[b] if move_b else 0)
         chosen = COLOURS
         if taken != ALL_COLOURS:

@@ -1,0 +1,183 @@
+"""Wide position passes: the penetration fix's position impulses (``settings.penetration``
+``impulse``, Box2D's non-linear Gauss-Seidel; :func:`sandbox.penetration.position_impulses`)
+eight contacts at a time, as the velocity sweeps are (:mod:`sandbox.solvers.wide`).
+
+A position pass visits the contacts one after another and moves their bodies as it goes; any
+fixed order is a valid pass. The contacts with two points are coloured as for the velocity
+sweeps, except that a body moves when its own inverse mass or moment is not zero (the passes
+push with the bodies' own masses: :func:`sandbox.penetration.position_masses`). A pass is
+then each colour's contacts, eight at a time, then the others (one point, or no colour left)
+one by one in :func:`sandbox.solvers.iterative.visit` order. :func:`order` lists that order,
+and the passes over the records follow it where the lanes do not run (uncompiled; the half
+and mass-weighted options), so every path gives the same numbers. A world without two-point
+contacts (discs) is passed over in the very same order as before the lanes.
+
+Each point's push is :func:`sandbox.solvers.impulses.push_point`, the same function the
+record pass calls. Layout, as the velocity lanes': lane ``l`` of field ``F`` of the block
+starting at ``i`` is ``lanes[i + F + l]``. A lane holds its bodies' inverse masses, the
+normal, both bodies' poses while the colour is visited (:func:`sandbox.math2d.pose_of`), the
+smallest separation it saw and whether it pushed, then for each point its place on each
+body, its depth when the step began and the separation it may keep
+(:func:`sandbox.penetration.allowed_separation`, fixed for the step).
+
+The passes ran about :data:`MEASURED` on the settled pyramid of base 40.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from sandbox.jit import njit
+from sandbox.math2d import pose_of, set_pose
+from sandbox.solvers.impulses import push_point
+from sandbox.solvers.iterative import visit
+from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, place
+
+MEASURED = "one pass of 2,369 contacts: 23 us eight at a time against 70 us one by one"
+
+IM_A, II_A, IM_B, II_B, NX, NY, *_rest = _offsets(19)
+AX, AY, AC, AS, ATURN, BX, BY, BC, BS, BTURN, WORST, MOVED, P0 = _rest  # poses: pose_of
+POINT_FIELDS = LAX, LAY, LBX, LBY, DEPTH, ALLOWED = _offsets(6)  # from P0 or P1 on
+P1 = P0 + np.uint64(len(POINT_FIELDS) * LANES)
+FIELDS = int(P1) // LANES + len(POINT_FIELDS)
+BLOCK = FIELDS * LANES
+POSE_A = (AX, AY, AC, AS, ATURN)
+POSE_B = (BX, BY, BC, BS, BTURN)
+
+
+@njit
+def plan(contacts, k: int, bodies, allowed, wide: bool):
+    """The order of a pass and, when ``wide``, its lanes: ``(order, lanes, owners, starts,
+    alone)``. ``order``: the contacts in lanes order (colour by colour), then ``alone`` (the
+    others) in :func:`~sandbox.solvers.iterative.visit` order. ``owners`` and ``starts`` as
+    :func:`sandbox.solvers.wide.place` (an empty lane: contact -1, bodies the row of
+    :func:`take_poses` no body uses); ``lanes`` packed
+    (:func:`pack`), ``allowed[i, j]`` the separation point j of contact i may keep (m)."""
+    colours = np.empty(k, dtype=np.int64)
+    count = colour(contacts, k, bodies, colours, True)
+    blocks = (k + LANES - 1) // LANES + count
+    owners = np.empty((3, blocks * LANES), dtype=np.int64)
+    starts = np.empty(count + 1, dtype=np.int64)
+    blocks = place(contacts, k, colours, count, owners, len(bodies), starts)
+    alone = np.nonzero(colours == COLOURS)[0]
+    order = np.empty(k, dtype=np.int64)
+    q = 0
+    for lane in range(blocks * LANES):
+        if owners[0, lane] >= 0:
+            order[q] = owners[0, lane]
+            q += 1
+    half = (len(alone) + 1) // 2
+    for r in range(len(alone)):
+        order[q + r] = alone[visit(r, half)]
+    lanes = np.empty(blocks * BLOCK if wide else 0)
+    if wide:
+        pack(contacts, bodies, lanes, owners, blocks, allowed)
+    return order, lanes, owners, starts, alone
+
+
+@njit
+def pack(contacts, bodies, lanes, owners, blocks: int, allowed) -> None:
+    """Each contact's fixed fields into its lane (``allowed`` as :func:`plan`); empty lanes get
+    zeros (no mass, no depth: they push nothing)."""
+    for q in range(blocks * LANES):
+        i = np.uint64(q // LANES) * np.uint64(BLOCK) + np.uint64(q % LANES)
+        ci = owners[0, q]
+        if ci < 0:
+            for f in range(FIELDS):
+                lanes[i + np.uint64(f * LANES)] = 0.0
+            continue
+        c = contacts[ci]
+        a, b = bodies[c["a"]], bodies[c["b"]]  # their own masses, as the record pass
+        lanes[i + IM_A], lanes[i + II_A] = a["inv_mass"], a["inv_moment"]
+        lanes[i + IM_B], lanes[i + II_B] = b["inv_mass"], b["inv_moment"]
+        lanes[i + NX], lanes[i + NY] = c["normal"][0], c["normal"][1]
+        # both points used (only those get a colour), each written out: a loop over the two
+        # took half as long again
+        p, base = c["points"][0], i + P0
+        lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
+        lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
+        lanes[base + DEPTH], lanes[base + ALLOWED] = p["depth"], allowed[ci, 0]
+        p, base = c["points"][1], i + P1
+        lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
+        lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
+        lanes[base + DEPTH], lanes[base + ALLOWED] = p["depth"], allowed[ci, 1]
+
+
+@njit(error_model="numpy")  # a division by k = 0 (an empty lane) gives a number left unused
+def visit_block(lanes, start, beta: float) -> None:
+    """One push of each point of the block's contacts (``start``: the block's first number),
+    the first point and then the second, as the record pass does. As
+    :func:`sandbox.solvers.wide.visit_block`, the loop reads and writes ``lanes`` itself, so
+    it runs as vector instructions; a push that does not happen is one of zero."""
+    for lane in range(LANES):
+        i = start + np.uint64(lane)
+        mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
+        n = lanes[i + NX], lanes[i + NY]
+        pa = lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS], lanes[i + ATURN]
+        pb = lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS], lanes[i + BTURN]
+        b0, b1 = i + P0, i + P1
+        point = (
+            (lanes[b0 + LAX], lanes[b0 + LAY]),
+            (lanes[b0 + LBX], lanes[b0 + LBY]),
+            lanes[b0 + DEPTH],
+            lanes[b0 + ALLOWED],
+        )
+        pa, pb, sep0, pushed0 = push_point(pa, pb, mass, n, point, beta)
+        point = (
+            (lanes[b1 + LAX], lanes[b1 + LAY]),
+            (lanes[b1 + LBX], lanes[b1 + LBY]),
+            lanes[b1 + DEPTH],
+            lanes[b1 + ALLOWED],
+        )
+        pa, pb, sep1, pushed1 = push_point(pa, pb, mass, n, point, beta)
+        lanes[i + WORST] = min(lanes[i + WORST], min(sep0, sep1))
+        lanes[i + MOVED] = max(lanes[i + MOVED], 1.0 if pushed0 | pushed1 else 0.0)
+        lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS], lanes[i + ATURN] = pa
+        lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS], lanes[i + BTURN] = pb
+
+
+@njit
+def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
+    """One push of every point of a colour's contacts (blocks ``first`` to ``end``): the
+    bodies' poses (``poses``, a row (x, y, cos, sin, turn) per body, :func:`take_poses`) into
+    all the colour's lanes, the pushes, the poses back (as
+    :func:`sandbox.solvers.wide.visit_colour`). Returns (smallest separation seen (m),
+    whether anything moved)."""
+    for block in range(first, end):
+        start = np.uint64(block) * np.uint64(BLOCK)
+        for lane in range(LANES):
+            q, i = block * LANES + lane, start + np.uint64(lane)
+            v, w = poses[owners[1, q]], poses[owners[2, q]]
+            lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS] = v[0], v[1], v[2], v[3]
+            lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS] = w[0], w[1], w[2], w[3]
+            lanes[i + ATURN], lanes[i + BTURN] = v[4], w[4]
+            lanes[i + WORST], lanes[i + MOVED] = 0.0, 0.0
+    for block in range(first, end):
+        visit_block(lanes, np.uint64(block) * np.uint64(BLOCK), beta)
+    worst, moved = 0.0, 0.0
+    for block in range(first, end):
+        start = np.uint64(block) * np.uint64(BLOCK)
+        for lane in range(LANES):
+            q, i = block * LANES + lane, start + np.uint64(lane)
+            v, w = poses[owners[1, q]], poses[owners[2, q]]
+            v[0], v[1], v[2], v[3] = lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS]
+            w[0], w[1], w[2], w[3] = lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS]
+            v[4], w[4] = lanes[i + ATURN], lanes[i + BTURN]
+            worst = min(worst, lanes[i + WORST])
+            moved = max(moved, lanes[i + MOVED])
+    return worst, moved != 0.0
+
+
+@njit
+def take_poses(bodies, poses) -> None:
+    """Each body's pose (:func:`sandbox.math2d.pose_of`) into its row of ``poses``; the last
+    row is the empty lanes' (zeros)."""
+    for i in range(len(bodies)):
+        poses[i, 0], poses[i, 1], poses[i, 2], poses[i, 3], poses[i, 4] = pose_of(bodies[i])
+
+
+@njit
+def put_poses(poses, bodies) -> None:
+    """The rows of ``poses`` back into the bodies."""
+    for i in range(len(bodies)):
+        set_pose(bodies[i], (poses[i, 0], poses[i, 1], poses[i, 2], poses[i, 3], poses[i, 4]))

@@ -1,0 +1,118 @@
+"""The wide position passes (sandbox.solvers.wide_positions): the penetration fix's position
+impulses, eight contacts at a time, give bit for bit what the record pass gives in the same
+order (colour by colour, then the contacts no colour could take)."""
+
+from __future__ import annotations
+
+import platform
+import re
+
+import numpy as np
+import pytest
+from test_wide_sweeps import CASES
+
+from sandbox.penetration import position_impulses, position_order, wide_position_impulses
+from sandbox.records import CONTACT
+from sandbox.solvers.iterative import visit
+from sandbox.solvers.wide import COLOURS, colour
+
+BOUNDS = (0.005, np.inf)  # slop (m), and no bound on the push (robust_positions off)
+BETA = 0.2
+GAP = 0.02  # m: contacts closer than this touch (only used by layered passes)
+
+
+def sunk(contacts, bodies):
+    """The same contacts 2 cm deeper than they were found, so that the passes push."""
+    contacts = contacts.copy()
+    contacts["points"]["depth"] += 0.02
+    return contacts, bodies
+
+
+@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("depth", ["as found", "2 cm deeper"])
+def test_wide_passes_equal_the_record_passes_bit_for_bit(case, depth):
+    contacts, bodies = CASES[case]()
+    if depth != "as found":
+        contacts, bodies = sunk(contacts, bodies)
+    k = len(contacts)
+    layering, lanes = position_order(contacts, k, bodies, False, GAP, BOUNDS, True)
+    wide_b, record_b = bodies.copy(), bodies.copy()
+    for _ in range(3):
+        got = wide_position_impulses(contacts, wide_b, BETA, BOUNDS, layering, lanes)
+        want = position_impulses(contacts, k, record_b, BETA, BOUNDS, layering)
+        assert got == want
+    for field in ("com", "cs", "turn"):
+        assert np.array_equal(wide_b[field], record_b[field]), field
+    moved = np.abs(wide_b["com"] - bodies["com"]).max()
+    if depth != "as found":
+        assert moved > 1e-3 and np.abs(wide_b["turn"]).max() > 0.0  # they pushed and turned
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_order_is_colour_by_colour_then_the_rest_interleaved(case):
+    contacts, bodies = CASES[case]()
+    k = len(contacts)
+    (order, _), (_, owners, starts, alone) = position_order(
+        contacts, k, bodies, False, GAP, BOUNDS, False
+    )
+    assert sorted(order) == list(range(k))
+    colours = np.empty(k, dtype=np.int64)
+    count = colour(contacts, k, bodies, colours, True)
+    assert len(starts) == count + 1
+    coloured = [i for c in range(count) for i in np.flatnonzero(colours == c)]
+    rest = np.flatnonzero(colours == COLOURS)
+    rest = [rest[visit(q, (len(rest) + 1) // 2)] for q in range(len(rest))]
+    assert list(order) == coloured + rest
+    assert list(alone) == list(np.flatnonzero(colours == COLOURS))
+    if not np.any(contacts["count"] == 2):  # discs: the old order of the passes, unchanged
+        assert list(order) == [visit(q, (k + 1) // 2) for q in range(k)]
+
+
+def test_a_held_contact_still_counts_its_bodies_as_moving():
+    # the soft step zeroes a contact's copies of a held body's masses; the position passes
+    # push that body all the same (with its own masses), so the colouring must see it move
+    contacts, bodies = CASES["pyramid of base 20, boxes (two-point manifolds, block solver)"]()
+    held = contacts.copy()
+    held["inv_mass_a"] = held["inv_moment_a"] = 0.0
+    k = len(held)
+    colours = np.empty(k, dtype=np.int64)
+    count = colour(held, k, bodies, colours, True)
+    for c in range(count):
+        moving = []
+        for i in np.flatnonzero(colours == c):
+            for side in ("a", "b"):
+                if bodies["inv_mass"][held[side][i]] > 0.0:
+                    moving.append(held[side][i])
+        assert len(moving) == len(set(moving))
+    sunk_held, _ = sunk(held, bodies)
+    layering, lanes = position_order(sunk_held, k, bodies, False, GAP, BOUNDS, True)
+    wide_b, record_b = bodies.copy(), bodies.copy()
+    got = wide_position_impulses(sunk_held, wide_b, BETA, BOUNDS, layering, lanes)
+    assert got == position_impulses(sunk_held, k, record_b, BETA, BOUNDS, layering)
+    assert np.array_equal(wide_b["com"], record_b["com"])
+
+
+def test_empty_contact_list():
+    bodies = np.zeros(
+        2, dtype=CASES["a plank under 80 boxes (contacts no colour takes)"]()[1].dtype
+    )
+    contacts = np.zeros(0, dtype=CONTACT)
+    layering, lanes = position_order(contacts, 0, bodies, False, GAP, BOUNDS, True)
+    assert wide_position_impulses(contacts, bodies, BETA, BOUNDS, layering, lanes) == (0.0, False)
+
+
+@pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64"), reason="x86 instructions")
+def test_the_lane_loop_compiles_to_vector_instructions():
+    numba = pytest.importorskip("numba")
+    from sandbox.solvers import wide_positions
+
+    if not hasattr(wide_positions.visit_block, "py_func"):
+        pytest.skip("compiling is off (SANDBOX_JIT=0)")
+    if numba.config.BOUNDSCHECK:
+        pytest.skip("bounds checks keep the loop one lane at a time")
+    fresh = numba.njit(error_model="numpy")(wide_positions.visit_block.py_func)
+    fresh(np.zeros(wide_positions.BLOCK), np.uint64(0), 0.2)
+    assembly = fresh.inspect_asm(fresh.signatures[0])
+    packed = len(re.findall(r"\bv?(mul|div|sqrt)pd\b", assembly))
+    single = len(re.findall(r"\bv?(mul|div|sqrt)sd\b", assembly))
+    assert packed > 20 and single < packed, (packed, single)
