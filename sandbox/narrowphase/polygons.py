@@ -25,6 +25,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from sandbox.jit import njit
 
 LINEAR_SLOP = 0.005  # m, the size of "touching" used by the tolerances below
@@ -47,11 +49,13 @@ def max_separation(wp, o1, c1, o2, c2):
     best = -math.inf
     edge = 0
     for i in range(c1):
-        nx, ny = wp[o1 + i, 2], wp[o1 + i, 3]
-        px, py = wp[o1 + i, 0], wp[o1 + i, 1]
+        r = np.uint64(o1 + i)  # unsigned: numba then leaves out the test for negative indexing
+        nx, ny = wp[r, 2], wp[r, 3]
+        px, py = wp[r, 0], wp[r, 1]
         si = math.inf
         for j in range(c2):
-            d = nx * (wp[o2 + j, 0] - px) + ny * (wp[o2 + j, 1] - py)
+            s = np.uint64(o2 + j)
+            d = nx * (wp[s, 0] - px) + ny * (wp[s, 1] - py)
             if d < si:
                 si = d
         if si > best:
@@ -67,7 +71,8 @@ def incident_edge(wp, o2, c2, nx, ny):
     best = math.inf
     edge = 0
     for i in range(c2):
-        d = wp[o2 + i, 2] * nx + wp[o2 + i, 3] * ny
+        r = np.uint64(o2 + i)
+        d = wp[r, 2] * nx + wp[r, 3] * ny
         if d < best:
             best = d
             edge = i
