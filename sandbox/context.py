@@ -47,7 +47,7 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     # holding the light body would fight it, so only overlap makes its passes go in layers
     ctx["hold_heavier"] = s.robust_positions and s.solver != "soft"
     # overlap beyond the slop plus one step's bounded push (m) is pushed out at max_push_speed
-    # by the position passes (sandbox.penetration.allowed_separation); infinite: never
+    # by the position passes (sandbox.solvers.wide_positions.allowed_separation); infinite: never
     deep = s.slop + s.max_push_speed * dt
     ctx["deep_overlap"] = deep if s.robust_positions and s.position_correction else np.inf
     ctx["slop"], ctx["baumgarte"] = s.slop, s.baumgarte

@@ -37,7 +37,13 @@ from sandbox.orientation import turn_bodies
 from sandbox.solvers.impulses import push_point, separation_of
 from sandbox.solvers.shock import contact_layers, hold_lower, touching
 from sandbox.solvers.soft import excess_depth
-from sandbox.solvers.wide_positions import plan, put_poses, take_poses, visit_colour
+from sandbox.solvers.wide_positions import (
+    allowed_separation,
+    plan,
+    put_poses,
+    take_poses,
+    visit_colour,
+)
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
 METHODS = ("half", "mass_weighted", "impulse")  # settings.penetration, in code order
@@ -60,7 +66,8 @@ def separation(c, p, bodies) -> tuple[float, float, float, float, float]:
 @njit
 def position_order(contacts, k: int, bodies, layered: bool, gap: float, bounds, wide: bool):
     """``((order, layer), lanes)``: the order the passes visit the contacts, each body's layer,
-    and the lanes of the wide passes (``wide``: :func:`wide_position_impulses`; else empty).
+    and the lanes of the wide passes (``wide``: :func:`wide_position_impulses`, and the order
+    then lists only the contacts the lanes leave; else the lanes are empty).
 
     Layered (``settings.robust_positions``, shock propagation on positions): bodies are sorted
     into layers from the fixed ones up (:func:`sandbox.solvers.shock.contact_layers`) and the
@@ -72,8 +79,7 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float, bounds, 
     velocity sweeps' order (:func:`sandbox.solvers.wide_positions.plan`); ``bounds`` = (slop,
     push) (m), as :func:`allowed_separation`."""
     if not layered:
-        allowed = allowed_separations(contacts, k if wide else 0, bounds)
-        order, lanes, owners, starts, alone = plan(contacts, k, bodies, allowed, wide)
+        order, lanes, owners, starts, alone = plan(contacts, k, bodies, bounds, wide)
         layering = order, np.zeros(bodies.shape[0], dtype=np.int64)
         return layering, (lanes, owners, starts, alone)
     layer = contact_layers(contacts, k, bodies, gap)
@@ -85,18 +91,6 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float, bounds, 
     none = np.zeros(0, dtype=np.int64)
     lanes = (np.zeros(0), np.zeros((3, 0), dtype=np.int64), np.zeros(1, dtype=np.int64), none)
     return (counting_order(key, 2 * n + 2), layer), lanes
-
-
-@njit
-def allowed_separations(contacts, k: int, bounds):
-    """(k, 2): :func:`allowed_separation` of each point of the first ``k`` contacts (m)."""
-    slop, push = bounds
-    allowed = np.zeros((k, 2))
-    for i in range(k):
-        c = contacts[i]
-        for j in range(c["count"]):
-            allowed[i, j] = allowed_separation(c, c["points"][j], slop, push)
-    return allowed
 
 
 @njit
@@ -167,18 +161,6 @@ def holds(c, bodies, layer) -> bool:
         return False
     upper, lower = (bodies[c["b"]], bodies[c["a"]]) if la < lb else (bodies[c["a"]], bodies[c["b"]])
     return lower["inv_mass"] == 0.0 or upper["inv_mass"] * HOLD_RATIO < lower["inv_mass"]
-
-
-@njit
-def allowed_separation(c, p, slop: float, push: float) -> float:
-    """The separation a point is pushed out to this step (m): -slop, except that an overlap
-    already there when the step began comes out by at most ``push`` (m, ``max_push_speed``
-    times dt), so bodies spawned inside one another separate at a bounded speed instead of
-    being fired apart (and through the ground). What the step's own motion pushed in is taken
-    out entirely. ``push`` is infinite unless ``settings.robust_positions`` is on."""
-    if p["depth"] <= slop + push:  # the usual case: no load sag to look up (it only lowers it)
-        return -slop
-    return min(-slop, -excess_depth(c, p) + push)
 
 
 @njit
@@ -305,9 +287,7 @@ def wide_position_impulses(contacts, bodies, beta: float, bounds, layering, lane
             w, m = visit_colour(lanes, owners, starts[c], starts[c + 1], poses, beta)
             worst, moved = min(worst, w), moved | m
         put_poses(poses, bodies)
-    order, layer = layering
-    rest = order[len(order) - len(alone) :], layer
-    w, m = position_impulses(contacts, len(alone), bodies, beta, bounds, rest)
+    w, m = position_impulses(contacts, len(alone), bodies, beta, bounds, layering)
     return min(worst, w), moved | m
 
 

@@ -18,7 +18,7 @@ starting at ``i`` is ``lanes[i + F + l]``. A lane holds its bodies' inverse mass
 normal, both bodies' poses while the colour is visited (:func:`sandbox.math2d.pose_of`), the
 smallest separation it saw and whether it pushed, then for each point its place on each
 body, its depth when the step began and the separation it may keep
-(:func:`sandbox.penetration.allowed_separation`, fixed for the step).
+(:func:`allowed_separation`, fixed for the step).
 
 The passes ran about :data:`MEASURED` on the settled pyramid of base 40.
 """
@@ -31,6 +31,7 @@ from sandbox.jit import njit
 from sandbox.math2d import pose_of, set_pose
 from sandbox.solvers.impulses import push_point
 from sandbox.solvers.iterative import visit
+from sandbox.solvers.soft import excess_depth
 from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, place
 
 MEASURED = "one pass of 2,369 contacts: 23 us eight at a time against 70 us one by one"
@@ -46,13 +47,27 @@ POSE_B = (BX, BY, BC, BS, BTURN)
 
 
 @njit
-def plan(contacts, k: int, bodies, allowed, wide: bool):
+def allowed_separation(c, p, slop: float, push: float) -> float:
+    """(The position stage's, :mod:`sandbox.penetration`, which takes it from here, where
+    the lanes are packed with it.) The separation a point is pushed out to this step (m): -slop, except that an overlap
+    already there when the step began comes out by at most ``push`` (m, ``max_push_speed``
+    times dt), so bodies spawned inside one another separate at a bounded speed instead of
+    being fired apart (and through the ground). What the step's own motion pushed in is taken
+    out entirely. ``push`` is infinite unless ``settings.robust_positions`` is on."""
+    if p["depth"] <= slop + push:  # the usual case: no load sag to look up (it only lowers it)
+        return -slop
+    return min(-slop, -excess_depth(c, p) + push)
+
+
+@njit
+def plan(contacts, k: int, bodies, bounds, wide: bool):
     """The order of a pass and, when ``wide``, its lanes: ``(order, lanes, owners, starts,
     alone)``. ``order``: the contacts in lanes order (colour by colour), then ``alone`` (the
-    others) in :func:`~sandbox.solvers.iterative.visit` order. ``owners`` and ``starts`` as
+    others) in :func:`~sandbox.solvers.iterative.visit` order; when ``wide``, only the latter
+    (the lanes take the rest). ``owners`` and ``starts`` as
     :func:`sandbox.solvers.wide.place` (an empty lane: contact -1, bodies the row of
-    :func:`take_poses` no body uses); ``lanes`` packed
-    (:func:`pack`), ``allowed[i, j]`` the separation point j of contact i may keep (m)."""
+    :func:`take_poses` no body uses); ``lanes`` packed (:func:`pack`; ``bounds`` = (slop,
+    push) (m), as :func:`allowed_separation`)."""
     colours = np.empty(k, dtype=np.int64)
     count = colour(contacts, k, bodies, colours, True)
     blocks = (k + LANES - 1) // LANES + count
@@ -60,25 +75,28 @@ def plan(contacts, k: int, bodies, allowed, wide: bool):
     starts = np.empty(count + 1, dtype=np.int64)
     blocks = place(contacts, k, colours, count, owners, len(bodies), starts)
     alone = np.nonzero(colours == COLOURS)[0]
-    order = np.empty(k, dtype=np.int64)
-    q = 0
-    for lane in range(blocks * LANES):
-        if owners[0, lane] >= 0:
-            order[q] = owners[0, lane]
-            q += 1
+    q = 0 if wide else k - len(alone)
+    order = np.empty(q + len(alone), dtype=np.int64)
+    if not wide:
+        q = 0
+        for lane in range(blocks * LANES):
+            if owners[0, lane] >= 0:
+                order[q] = owners[0, lane]
+                q += 1
     half = (len(alone) + 1) // 2
     for r in range(len(alone)):
         order[q + r] = alone[visit(r, half)]
     lanes = np.empty(blocks * BLOCK if wide else 0)
     if wide:
-        pack(contacts, bodies, lanes, owners, blocks, allowed)
+        pack(contacts, bodies, lanes, owners, blocks, bounds)
     return order, lanes, owners, starts, alone
 
 
 @njit
-def pack(contacts, bodies, lanes, owners, blocks: int, allowed) -> None:
-    """Each contact's fixed fields into its lane (``allowed`` as :func:`plan`); empty lanes get
+def pack(contacts, bodies, lanes, owners, blocks: int, bounds) -> None:
+    """Each contact's fixed fields into its lane (``bounds`` as :func:`plan`); empty lanes get
     zeros (no mass, no depth: they push nothing)."""
+    slop, push = bounds
     for q in range(blocks * LANES):
         i = np.uint64(q // LANES) * np.uint64(BLOCK) + np.uint64(q % LANES)
         ci = owners[0, q]
@@ -96,11 +114,13 @@ def pack(contacts, bodies, lanes, owners, blocks: int, allowed) -> None:
         p, base = c["points"][0], i + P0
         lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
         lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
-        lanes[base + DEPTH], lanes[base + ALLOWED] = p["depth"], allowed[ci, 0]
+        lanes[base + DEPTH] = p["depth"]
+        lanes[base + ALLOWED] = allowed_separation(c, p, slop, push)
         p, base = c["points"][1], i + P1
         lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
         lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
-        lanes[base + DEPTH], lanes[base + ALLOWED] = p["depth"], allowed[ci, 1]
+        lanes[base + DEPTH] = p["depth"]
+        lanes[base + ALLOWED] = allowed_separation(c, p, slop, push)
 
 
 @njit(error_model="numpy")  # a division by k = 0 (an empty lane) gives a number left unused
