@@ -307,9 +307,11 @@ print_table(["dt (s)", "steps", "sweeps, first step", "most sweeps, later steps"
 # colour no visit changes what another reads, so visiting them one by one or all at once gives
 # the very same numbers, and the processor visits eight at once with its vector instructions
 # (`sandbox/solvers/wide.py`; the arithmetic of a visit is `sandbox/solvers/impulses.py`, the
-# same for both). A sweep is one colour after another. Only contacts with two points get a
-# colour; those with one (a disc on anything) are visited one by one after the colours, as
-# listed: in a lane of eight their second point and the block solver would be wasted work.
+# same for both). A sweep is one colour after another. Contacts with one point (a disc on
+# anything) have lanes of their own (`sandbox/solvers/wide_single.py`): in a lane made for two
+# points their second point and the block solver would be wasted work. So within each colour
+# the contacts with two points come first, then those with one; only a body touching more than
+# 63 others leaves contacts without a colour, visited one by one at the end.
 #
 # Below: the pyramid's contacts after 1 s, coloured as the step colours them, then the same
 # ten sweeps on copies of them three ways: one contact at a time colour by colour, one at a
@@ -328,7 +330,7 @@ for _ in range(60):
     world_c.step()
 contacts_c, bodies_c = world_c.manifolds.records.copy(), world_c.state.copy()
 colours_c = np.empty(len(contacts_c), dtype=np.int64)
-count_c = colour(contacts_c, len(contacts_c), bodies_c, colours_c)
+count_c = colour(contacts_c, len(contacts_c), bodies_c, colours_c, False, True)
 sizes_c = np.bincount(colours_c[colours_c < COLOURS], minlength=count_c)
 print_table(["colour", "contacts", f"blocks of {LANES}"],
             [*((c, int(n), -(-int(n) // LANES)) for c, n in enumerate(sizes_c)),
@@ -336,8 +338,14 @@ print_table(["colour", "contacts", f"blocks of {LANES}"],
 
 
 def one_at_a_time(contacts, bodies, sweeps: int) -> None:
-    """``sweeps`` sweeps, one contact at a time, colour by colour."""
-    order = [i for c in range(count_c) for i in np.flatnonzero(colours_c == c)]
+    """``sweeps`` sweeps, one contact at a time, colour by colour (two points, then one)."""
+    points = contacts["count"]
+    order = [
+        i
+        for c in range(count_c)
+        for n in (2, 1)
+        for i in np.flatnonzero((colours_c == c) & (points == n))
+    ]
     for _ in range(sweeps):
         for i in order:
             visit_contact(contacts[i], bodies, True)

@@ -75,7 +75,7 @@ def test_pyramid_of_base_40_holds_when_every_load_is_held():
 def test_pyramid_of_base_40_rests_at_the_defaults():
     # with contacts capped at an eighth of the substep rate (30 Hz at 4 substeps) the pyramid
     # rests: over the last 5 s the top box stays within 1 mm of where it is, 13 cm down at most
-    # (measured 124 mm; iterative 174 mm, Box2D v3.1 116 mm), within 6 cm of where it started
+    # (measured 124 mm; iterative 178 mm, Box2D v3.1 116 mm), within 6 cm of where it started
     # sideways (measured 35 mm; Box2D 1 mm), and no box turns 1 degree. With the cap at a
     # quarter (60 Hz) it rang forever: -15..69 mm, 1.3 m sideways
     run = pyramid_run()

@@ -37,6 +37,7 @@ import numpy as np
 from sandbox.jit import JIT_ENABLED, njit
 from sandbox.joints.solve import solve_joint_velocities
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
+from sandbox.solvers import wide_single as single
 from sandbox.solvers.common import masses, normal_speed
 from sandbox.solvers.impulses import block_totals, friction_total, normal_total
 from sandbox.solvers.wide import (
@@ -206,31 +207,35 @@ def visit_points(c, va, vb, accumulate: bool):
 
 @njit
 def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
-    """``n`` sweeps of accumulated impulses, each the joints, then the two-point contacts colour
-    by colour, eight at a time (:mod:`sandbox.solvers.wide`), then the others one by one in
-    :func:`visit` order: the contacts with one point, and any no colour could take. The same
-    visits as :func:`sweep`'s, in another order; a world of one-point contacts only (discs)
-    is swept exactly as :func:`sweep` sweeps it."""
+    """``n`` sweeps of accumulated impulses, each the joints, then the contacts colour by
+    colour, eight at a time: in each colour those with two points (:mod:`sandbox.solvers.wide`),
+    then those with one (:mod:`sandbox.solvers.wide_single`); then any no colour could take,
+    one by one in :func:`visit` order. The same visits as :func:`sweep`'s, in another order."""
     colours = np.empty(k, dtype=np.int64)
-    count = colour(contacts, k, bodies, colours)
-    if count == 0:  # no two-point contact: one by one, as sweep() does (the same numbers)
-        sweeps(contacts, k, joints, bodies, True, n)
-        return
-    lanes, owners, starts = buffers(k, count)
+    count = colour(contacts, k, bodies, colours, False, True)
     empty = len(bodies)  # the row of velocities that empty lanes read and write
-    blocks = place(contacts, k, colours, count, owners, empty, starts)
+    lanes, owners, starts = buffers(k, count)
+    blocks = place(contacts, k, colours, count, owners, empty, starts, 2)
+    owners1 = np.empty((3, ((k + LANES - 1) // LANES + count) * LANES), dtype=np.int64)
+    starts1 = np.empty(count + 1, dtype=np.int64)
+    blocks1 = place(contacts, k, colours, count, owners1, empty, starts1, 1)
     alone = np.nonzero(colours == COLOURS)[0]
     half = (len(alone) + 1) // 2
     if not JIT_ENABLED:  # uncompiled, lanes buy nothing: the same visits one by one, same numbers
         for _ in range(n):
             solve_joint_velocities(joints, bodies, True)
-            for q in range(blocks * LANES):  # colour by colour
-                if owners[0, q] >= 0:
-                    visit_contact(contacts[owners[0, q]], bodies, True)
+            for c in range(count):  # colour by colour: two points, then one
+                for lanes_of in ((owners, starts), (owners1, starts1)):
+                    ids, first = lanes_of
+                    for q in range(first[c] * LANES, first[c + 1] * LANES):
+                        if ids[0, q] >= 0:
+                            visit_contact(contacts[ids[0, q]], bodies, True)
             for q in range(len(alone)):
                 visit_contact(contacts[alone[visit(q, half)]], bodies, True)
         return
     pack(contacts, lanes, owners, blocks)
+    lanes1 = np.empty(blocks1 * single.BLOCK)
+    single.pack(contacts, lanes1, owners1, blocks1)
     velocities = np.zeros((empty + 1, 3))
     take_velocities(bodies, velocities)
     for _ in range(n):
@@ -240,10 +245,12 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
             take_velocities(bodies, velocities)
         for c in range(count):
             visit_colour(lanes, owners, starts[c], starts[c + 1], velocities)
+            single.visit_colour(lanes1, owners1, starts1[c], starts1[c + 1], velocities)
         for q in range(len(alone)):
             visit_rows(contacts[alone[visit(q, half)]], velocities)
     put_velocities(velocities, bodies)
     unpack(contacts, lanes, owners, blocks)
+    single.unpack(contacts, lanes1, owners1, blocks1)
 
 
 @njit(inline="always")

@@ -19,9 +19,10 @@ Layout (:func:`place`, :func:`pack`): each colour's contacts fill blocks of ``LA
 field of its eight contacts side by side, ``LANES`` numbers per field (``lanes[block][field]
 [lane]``, as Box2D's ``b2ContactConstraintSIMD``), so that lane ``l`` of field ``F`` of the
 block starting at ``i`` is ``lanes[i + F + l]``. A colour's last block is filled with empty
-lanes (no bodies, zero masses: they push nothing). Contacts with one point (discs), and any
-for which 63 colours do not suffice (one body touching more than 63 others), are visited one by
-one after the colours (:func:`colour`).
+lanes (no bodies, zero masses: they push nothing). Contacts with one point (discs) have lanes
+of a layout of their own (:mod:`sandbox.solvers.wide_single`), visited after each colour's
+two-point lanes; any contact for which 63 colours do not suffice (one body touching more than
+63 others) is visited one by one after the colours (:func:`colour`).
 """
 
 from __future__ import annotations
@@ -60,23 +61,21 @@ BLOCK = FIELDS * LANES  # numbers per block
 
 
 @njit
-def colour(contacts, k: int, bodies, colours, own: bool = False) -> int:
-    """Give each of the first ``k`` contacts with two points the first colour none of its moving
-    bodies has yet (greedy, in list order): ``colours[i]``, or ``COLOURS`` for a contact
-    visited alone (one point, or no colour left). A body moves when the contact's copy of its
-    inverse mass or moment is not zero (``own``: the body's own, as the position passes use
-    them). Returns the number of colours used.
+def colour(contacts, k: int, bodies, colours, own: bool = False, single: bool = False) -> int:
+    """Give each of the first ``k`` contacts with two points (``single``: and those with one)
+    the first colour none of its moving bodies has yet (greedy, in list order):
+    ``colours[i]``, or ``COLOURS`` for a contact visited alone (no colour left, or one point
+    and not ``single``). A body moves when the contact's copy of its inverse mass or moment is
+    not zero (``own``: the body's own, as the position passes use them). Returns the number of
+    colours used.
 
-    One-point contacts stay out of the lanes: there half a lane's arithmetic (the second point,
-    the block solver) would be wasted, and copying the contact in and out costs more than the
-    lanes save (13,451 one-point contacts of the rain of 5,000 discs: ten sweeps, with the
-    copying, 2.3 ms eight at a time against 2.7 ms one by one, and the step as a whole
-    slower)."""
+    One-point contacts (discs) have lanes of their own (:mod:`sandbox.solvers.wide_single`):
+    in these a lane's second point and block solver would be wasted arithmetic."""
     used = np.zeros(len(bodies), dtype=np.int64)  # bit c set: the body has colour c
     count = 0
     for i in range(k):
         c = contacts[i]
-        if c["count"] != 2:
+        if c["count"] != 2 and not (single and c["count"] == 1):
             colours[i] = COLOURS
             continue
         a, b = c["a"], c["b"]
@@ -114,8 +113,11 @@ def buffers(k: int, count: int):
 
 
 @njit
-def place(contacts, k: int, colours, count: int, owners, empty: int, starts) -> int:
-    """Where each of the first ``k`` contacts goes, colour by colour: contact i of its colour in
+def place(
+    contacts, k: int, colours, count: int, owners, empty: int, starts, points: int = 2
+) -> int:
+    """Where each of the first ``k`` contacts with ``points`` points goes, colour by colour
+    (``points`` 0: every coloured contact): contact i of its colour in
     block i // LANES, lane i % LANES (:mod:`module layout <sandbox.solvers.wide>`);
     ``owners[:, block * LANES + lane]``: the contact's index in ``contacts`` and its bodies a
     and b (an empty lane: -1 and twice ``empty``, a row of velocities no body uses);
@@ -123,7 +125,8 @@ def place(contacts, k: int, colours, count: int, owners, empty: int, starts) -> 
     blocks."""
     sizes = np.zeros(count + 1, dtype=np.int64)
     for i in range(k):
-        sizes[min(colours[i], count)] += 1
+        if points == 0 or contacts[i]["count"] == points:
+            sizes[min(colours[i], count)] += 1
     starts[0] = 0
     for c in range(count):
         starts[c + 1] = starts[c] + (sizes[c] + LANES - 1) // LANES
@@ -133,7 +136,7 @@ def place(contacts, k: int, colours, count: int, owners, empty: int, starts) -> 
     filled = np.zeros(count, dtype=np.int64)
     for i in range(k):
         c = colours[i]
-        if c < count:
+        if c < count and (points == 0 or contacts[i]["count"] == points):
             q = starts[c] * LANES + filled[c]
             owners[0, q], owners[1, q], owners[2, q] = i, contacts[i]["a"], contacts[i]["b"]
             filled[c] += 1
