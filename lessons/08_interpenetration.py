@@ -29,6 +29,10 @@
 #    $\mathbf{p}_1 \mathrel{-}= \lambda\hat{\mathbf{n}} / m_1$,
 #    $\theta_1 \mathrel{-}= (\mathbf{r}_1\times\lambda\hat{\mathbf{n}}) / I_1$, the opposite for
 #    body 2. It removes a fraction $\beta$ (`settings.baumgarte`) per pass, a few passes per step.
+#    One point's push is `push_point` in `sandbox/solvers/impulses.py`. Like the velocity
+#    sweeps (lesson 09), a pass visits the contacts colour by colour, eight at a time with the
+#    processor's vector instructions (`sandbox/solvers/wide_positions.py`): any fixed order is
+#    a valid pass, and this one gives the same numbers as one contact at a time in that order.
 #
 # All three leave `settings.slop` (5 mm) of overlap so that resting contacts stay in touch.
 # A static body has infinite mass: options 1 and 2 then both move the other body by all of $p$,

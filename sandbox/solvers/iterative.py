@@ -212,13 +212,14 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     then those with one (:mod:`sandbox.solvers.wide_single`); then any no colour could take,
     one by one in :func:`visit` order. The same visits as :func:`sweep`'s, in another order."""
     colours = np.empty(k, dtype=np.int64)
-    count = colour(contacts, k, bodies, colours, False, True)
+    ends = np.empty((3, k), dtype=np.int64)
+    count = colour(contacts, k, bodies, colours, False, True, ends)
     empty = len(bodies)  # the row of velocities that empty lanes read and write
     lanes, owners, starts = buffers(k, count)
-    blocks = place(contacts, k, colours, count, owners, empty, starts, 2)
+    blocks = place(ends, k, colours, count, owners, empty, starts, 2)
     owners1 = np.empty((3, ((k + LANES - 1) // LANES + count) * LANES), dtype=np.int64)
     starts1 = np.empty(count + 1, dtype=np.int64)
-    blocks1 = place(contacts, k, colours, count, owners1, empty, starts1, 1)
+    blocks1 = place(ends, k, colours, count, owners1, empty, starts1, 1)
     alone = np.nonzero(colours == COLOURS)[0]
     half = (len(alone) + 1) // 2
     if not JIT_ENABLED:  # uncompiled, lanes buy nothing: the same visits one by one, same numbers

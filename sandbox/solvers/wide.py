@@ -61,13 +61,17 @@ BLOCK = FIELDS * LANES  # numbers per block
 
 
 @njit
-def colour(contacts, k: int, bodies, colours, own: bool = False, single: bool = False) -> int:
+def colour(
+    contacts, k: int, bodies, colours, own: bool = False, single: bool = False, ends=None
+) -> int:
     """Give each of the first ``k`` contacts with two points (``single``: and those with one)
     the first colour none of its moving bodies has yet (greedy, in list order):
     ``colours[i]``, or ``COLOURS`` for a contact visited alone (no colour left, or one point
     and not ``single``). A body moves when the contact's copy of its inverse mass or moment is
     not zero (``own``: the body's own, as the position passes use them). Returns the number of
-    colours used.
+    colours used. ``ends`` (3, k), if given, gets each contact's number of points and its bodies
+    a and b, for :func:`place` (which then reads no record: the records are hundreds of bytes
+    apart, and reading them again cost as much as the colouring).
 
     One-point contacts (discs) have lanes of their own (:mod:`sandbox.solvers.wide_single`):
     in these a lane's second point and block solver would be wasted arithmetic."""
@@ -75,10 +79,12 @@ def colour(contacts, k: int, bodies, colours, own: bool = False, single: bool = 
     count = 0
     for i in range(k):
         c = contacts[i]
+        a, b = c["a"], c["b"]
+        if ends is not None:
+            ends[0, i], ends[1, i], ends[2, i] = c["count"], a, b
         if c["count"] != 2 and not (single and c["count"] == 1):
             colours[i] = COLOURS
             continue
-        a, b = c["a"], c["b"]
         move_a = c["inv_mass_a"] != 0.0 or c["inv_moment_a"] != 0.0
         move_b = c["inv_mass_b"] != 0.0 or c["inv_moment_b"] != 0.0
         if own:  # a copy is the body's own or 0 (held): only a 0 needs a look at the body
@@ -113,11 +119,10 @@ def buffers(k: int, count: int):
 
 
 @njit
-def place(
-    contacts, k: int, colours, count: int, owners, empty: int, starts, points: int = 2
-) -> int:
+def place(ends, k: int, colours, count: int, owners, empty: int, starts, points: int = 2) -> int:
     """Where each of the first ``k`` contacts with ``points`` points goes, colour by colour
-    (``points`` 0: every coloured contact): contact i of its colour in
+    (``points`` 0: every coloured contact; ``ends`` as :func:`colour` fills it): contact i of
+    its colour in
     block i // LANES, lane i % LANES (:mod:`module layout <sandbox.solvers.wide>`);
     ``owners[:, block * LANES + lane]``: the contact's index in ``contacts`` and its bodies a
     and b (an empty lane: -1 and twice ``empty``, a row of velocities no body uses);
@@ -125,7 +130,7 @@ def place(
     blocks."""
     sizes = np.zeros(count + 1, dtype=np.int64)
     for i in range(k):
-        if points == 0 or contacts[i]["count"] == points:
+        if points == 0 or ends[0, i] == points:
             sizes[min(colours[i], count)] += 1
     starts[0] = 0
     for c in range(count):
@@ -136,9 +141,9 @@ def place(
     filled = np.zeros(count, dtype=np.int64)
     for i in range(k):
         c = colours[i]
-        if c < count and (points == 0 or contacts[i]["count"] == points):
+        if c < count and (points == 0 or ends[0, i] == points):
             q = starts[c] * LANES + filled[c]
-            owners[0, q], owners[1, q], owners[2, q] = i, contacts[i]["a"], contacts[i]["b"]
+            owners[0, q], owners[1, q], owners[2, q] = i, ends[1, i], ends[2, i]
             filled[c] += 1
     return blocks
 

@@ -69,11 +69,12 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
     :func:`take_poses` no body uses); ``lanes`` packed (:func:`pack`; ``bounds`` = (slop,
     push) (m), as :func:`allowed_separation`)."""
     colours = np.empty(k, dtype=np.int64)
-    count = colour(contacts, k, bodies, colours, True)
+    ends = np.empty((3, k), dtype=np.int64)
+    count = colour(contacts, k, bodies, colours, True, False, ends)
     blocks = (k + LANES - 1) // LANES + count
     owners = np.empty((3, blocks * LANES), dtype=np.int64)
     starts = np.empty(count + 1, dtype=np.int64)
-    blocks = place(contacts, k, colours, count, owners, len(bodies), starts)
+    blocks = place(ends, k, colours, count, owners, len(bodies), starts)
     alone = np.nonzero(colours == COLOURS)[0]
     q = 0 if wide else k - len(alone)
     order = np.empty(q + len(alone), dtype=np.int64)
