@@ -23,6 +23,7 @@ __all__ = [
     "JIT_ENABLED",
     "bound",
     "entry",
+    "literally",
     "njit",
     "quiet_compiles",
     "take_cache_note",
@@ -83,6 +84,8 @@ if JIT_ENABLED:
             return numba.njit(**kwargs)(args[0])
         return numba.njit(*args, **kwargs)
 
+    literally = numba.literally  # compile one version of a function per value of an argument
+
 else:
 
     def njit(*args, **kwargs):
@@ -90,6 +93,10 @@ else:
         if args and callable(args[0]) and len(args) == 1:
             return args[0]
         return lambda f: f
+
+    def literally(value):
+        """Plain-Python stand-in for ``numba.literally``: the value itself."""
+        return value
 
 
 def quiet_compiles() -> None:

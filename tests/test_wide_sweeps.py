@@ -155,10 +155,11 @@ def test_the_lane_loop_compiles_to_vector_instructions():
         pytest.skip("compiling is off (SANDBOX_JIT=0)")
     if numba.config.BOUNDSCHECK:
         pytest.skip("bounds checks keep the loop one lane at a time")
-    for module in (wide, wide_single):
+    # the two-point lanes' function is compiled once with the block solver and once without
+    for module, extra in ((wide, (True,)), (wide, (False,)), (wide_single, ())):
         fresh = numba.njit(module.visit_block.py_func)  # not from the cache: its assembly is kept
-        fresh(np.zeros(module.BLOCK), np.uint64(0))
-        assembly = fresh.inspect_asm(fresh.signatures[0])
+        fresh(np.zeros(module.BLOCK), np.uint64(0), *extra)
+        assembly = fresh.inspect_asm(fresh.signatures[-1])
         packed = len(re.findall(r"\bv?mulpd\b", assembly))
         single = len(re.findall(r"\bv?mulsd\b", assembly))
-        assert packed > 10 and single < packed, (module.__name__, packed, single)
+        assert packed > 10 and single < packed, (module.__name__, extra, packed, single)

@@ -45,6 +45,7 @@ from sandbox.solvers.wide import (
     LANES,
     buffers,
     colour,
+    groups,
     pack,
     place,
     put_velocities,
@@ -212,11 +213,12 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     then those with one (:mod:`sandbox.solvers.wide_single`); then any no colour could take,
     one by one in :func:`visit` order. The same visits as :func:`sweep`'s, in another order."""
     colours = np.empty(k, dtype=np.int64)
-    ends = np.empty((3, k), dtype=np.int64)
+    ends = np.empty((4, k), dtype=np.int64)
     count = colour(contacts, k, bodies, colours, False, True, ends)
     empty = len(bodies)  # the row of velocities that empty lanes read and write
-    lanes, owners, starts = buffers(k, count)
-    blocks = place(ends, k, colours, count, owners, empty, starts, 2)
+    # two-point contacts in two groups a colour: with the block solver (2 c), without (2 c + 1)
+    lanes, owners, starts = buffers(k, 2 * count)
+    blocks = place(ends, k, groups(ends, k, colours, count), 2 * count, owners, empty, starts, 0)
     owners1 = np.empty((3, ((k + LANES - 1) // LANES + count) * LANES), dtype=np.int64)
     starts1 = np.empty(count + 1, dtype=np.int64)
     blocks1 = place(ends, k, colours, count, owners1, empty, starts1, 1)
@@ -225,10 +227,10 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     if not JIT_ENABLED:  # uncompiled, lanes buy nothing: the same visits one by one, same numbers
         for _ in range(n):
             solve_joint_velocities(joints, bodies, True)
-            for c in range(count):  # colour by colour: two points, then one
-                for lanes_of in ((owners, starts), (owners1, starts1)):
-                    ids, first = lanes_of
-                    for q in range(first[c] * LANES, first[c + 1] * LANES):
+            for c in range(count):  # colour by colour: two points (both groups), then one
+                for ids, first, end in ((owners, starts[2 * c], starts[2 * c + 2]),
+                                        (owners1, starts1[c], starts1[c + 1])):  # fmt: skip
+                    for q in range(first * LANES, end * LANES):
                         if ids[0, q] >= 0:
                             visit_contact(contacts[ids[0, q]], bodies, True)
             for q in range(len(alone)):
@@ -245,7 +247,8 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
             solve_joint_velocities(joints, bodies, True)
             take_velocities(bodies, velocities)
         for c in range(count):
-            visit_colour(lanes, owners, starts[c], starts[c + 1], velocities)
+            visit_colour(lanes, owners, starts[2 * c], starts[2 * c + 1], velocities, True)
+            visit_colour(lanes, owners, starts[2 * c + 1], starts[2 * c + 2], velocities, False)
             single.visit_colour(lanes1, owners1, starts1[c], starts1[c + 1], velocities)
         for q in range(len(alone)):
             visit_rows(contacts[alone[visit(q, half)]], velocities)

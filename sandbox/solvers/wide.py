@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox.jit import njit
+from sandbox.jit import literally, njit
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
 from sandbox.solvers.impulses import block_totals, friction_total, normal_total
 
@@ -49,7 +49,7 @@ def _offsets(count: int) -> list[np.uint64]:
 # a contact's fields in a block, in this order: its bodies' inverse masses, the normal and the
 # friction, the block solver's K and K^-1, both bodies' velocities while the colour is visited,
 # then each point's fields (at P0 and P1)
-IM_A, II_A, IM_B, II_B, NX, NY, MU, USE_BLOCK, K11, K12, K22, M11, M12, M22, *_rest = _offsets(21)
+IM_A, II_A, IM_B, II_B, NX, NY, MU, K11, K12, K22, M11, M12, M22, *_rest = _offsets(20)
 VAX, VAY, WA, VBX, VBY, WB, P0 = _rest
 # a point's fields, from P0 or P1 on
 POINT_FIELDS = RN_A, RN_B, RT_A, RT_B, NORMAL_MASS, TANGENT_MASS, BIAS, *_rest = _offsets(10)
@@ -69,9 +69,10 @@ def colour(
     ``colours[i]``, or ``COLOURS`` for a contact visited alone (no colour left, or one point
     and not ``single``). A body moves when the contact's copy of its inverse mass or moment is
     not zero (``own``: the body's own, as the position passes use them). Returns the number of
-    colours used. ``ends`` (3, k), if given, gets each contact's number of points and its bodies
-    a and b, for :func:`place` (which then reads no record: the records are hundreds of bytes
-    apart, and reading them again cost as much as the colouring).
+    colours used. ``ends`` (4, k), if given, gets each contact's number of points, its bodies
+    a and b and whether it uses the block solver, for :func:`place` and :func:`groups` (which
+    then read no record: the records are hundreds of bytes apart, and reading them again cost
+    as much as the colouring).
 
     One-point contacts (discs) have lanes of their own (:mod:`sandbox.solvers.wide_single`):
     in these a lane's second point and block solver would be wasted arithmetic."""
@@ -82,6 +83,7 @@ def colour(
         a, b = c["a"], c["b"]
         if ends is not None:
             ends[0, i], ends[1, i], ends[2, i] = c["count"], a, b
+            ends[3, i] = 1 if c["use_block"] else 0
         if c["count"] != 2 and not (single and c["count"] == 1):
             colours[i] = COLOURS
             continue
@@ -149,6 +151,19 @@ def place(ends, k: int, colours, count: int, owners, empty: int, starts, points:
 
 
 @njit
+def groups(ends, k: int, colours, count: int):
+    """Each two-point contact's group for :func:`place`: 2 c for one of colour c that uses the
+    block solver, 2 c + 1 for one that solves its points one after the other, ``2 count`` for
+    any other contact (left out). A block then holds contacts solved one way only
+    (:func:`visit_block`); within a colour the order is free."""
+    key = np.empty(k, dtype=np.int64)
+    for i in range(k):
+        c = colours[i]
+        key[i] = 2 * c + 1 - ends[3, i] if c < count and ends[0, i] == 2 else 2 * count
+    return key
+
+
+@njit
 def pack(contacts, lanes, owners, blocks: int) -> None:
     """Copy the contacts into their lanes (:func:`place`); empty lanes get zeros."""
     for q in range(blocks * LANES):
@@ -166,7 +181,6 @@ def pack_lane(c, lanes, i) -> None:
     lanes[i + IM_A], lanes[i + II_A] = c["inv_mass_a"], c["inv_moment_a"]
     lanes[i + IM_B], lanes[i + II_B] = c["inv_mass_b"], c["inv_moment_b"]
     lanes[i + NX], lanes[i + NY], lanes[i + MU] = c["normal"][0], c["normal"][1], c["friction"]
-    lanes[i + USE_BLOCK] = 1.0 if c["use_block"] else 0.0
     k, m = c["block_k"], c["block_mass"]
     lanes[i + K11], lanes[i + K12], lanes[i + K22] = k[0], k[1], k[2]
     lanes[i + M11], lanes[i + M12], lanes[i + M22] = m[0], m[1], m[2]
@@ -198,15 +212,19 @@ def unpack(contacts, lanes, owners, blocks: int) -> None:
 
 
 @njit
-def visit_block(lanes, start) -> None:
+def visit_block(lanes, start, block: bool) -> None:
     """One visit of each of the block's contacts (``start``: the block's first number), as
     :func:`sandbox.solvers.iterative.visit_contact` with accumulated impulses: friction within
     the cone of the current normal impulses, then the normal impulses, both points together
     (block solver) or one after the other. The lanes are independent, so this loop runs as
     vector instructions, eight lanes each: the loop reads and writes ``lanes`` itself (handed
     to another function, the array would be counted as referenced in every lane, and the loop
-    would stay one lane at a time), and the block solver and the one-by-one solve are both
-    worked out and one kept, so that every lane runs the same instructions."""
+    would stay one lane at a time). ``block``: the block's contacts use the block solver, or
+    else all solve their points one after the other (:func:`groups`); numba compiles a version
+    for each (``literally``), so every lane runs the same instructions, and neither works out
+    what the other needs (a lane of each kind in one block, both were worked out and one kept:
+    13 % slower)."""
+    literally(block)
     for lane in range(LANES):
         i = start + np.uint64(lane)
         p0, p1 = i + P0, i + P1  # where each point's fields begin
@@ -243,13 +261,12 @@ def visit_block(lanes, start) -> None:
         m = lanes[i + M11], lanes[i + M12], lanes[i + M22]  # K^-1
         b1 = v_n1 - bias1 - (k11 * a1 + k12 * a2)
         b2 = v_n2 - bias2 - (k12 * a1 + k22 * a2)
-        x1, x2 = block_totals(a1, a2, b1, b2, k12, m, mass1, mass2)
-        # one after the other (the second point sees what the first one's impulse did)
-        y1 = normal_total(a1, mass1, bias1, v_n1)
-        va1, vb1 = push_along(va, vb, mass, nx, ny, rn_a1, rn_b1, y1 - a1)
-        y2 = normal_total(a2, mass2, bias2, speed_along(va1, vb1, nx, ny, rn_a2, rn_b2))
-        if lanes[i + USE_BLOCK] == 0.0:
-            x1, x2 = y1, y2
+        if block:
+            x1, x2 = block_totals(a1, a2, b1, b2, k12, m, mass1, mass2)
+        else:  # one after the other (the second point sees what the first one's impulse did)
+            x1 = normal_total(a1, mass1, bias1, v_n1)
+            va1, vb1 = push_along(va, vb, mass, nx, ny, rn_a1, rn_b1, x1 - a1)
+            x2 = normal_total(a2, mass2, bias2, speed_along(va1, vb1, nx, ny, rn_a2, rn_b2))
         va, vb = push_along(va, vb, mass, nx, ny, rn_a1, rn_b1, x1 - a1)  # P = (x1 - a1) n
         va, vb = push_along(va, vb, mass, nx, ny, rn_a2, rn_b2, x2 - a2)
         lanes[p0 + NORMAL_IMPULSE], lanes[p1 + NORMAL_IMPULSE] = x1, x2
@@ -260,28 +277,32 @@ def visit_block(lanes, start) -> None:
 
 
 @njit
-def visit_colour(lanes, owners, first: int, end: int, velocities) -> None:
-    """One visit of every contact of a colour (blocks ``first`` to ``end``): the bodies'
-    velocities (``velocities``, a row (vx, vy, w) per body) into all the colour's lanes, the
+def visit_colour(lanes, owners, first: int, end: int, velocities, block: bool) -> None:
+    """One visit of every contact of a group of a colour (blocks ``first`` to ``end``, all
+    solved with the block solver or all without: ``block``, :func:`groups`): the bodies'
+    velocities (``velocities``, a row (vx, vy, w) per body) into all the group's lanes, the
     visits, the velocities back. No two contacts of a colour share a moving body, so this is
     the same as copying in and out block by block; but the vector loads of a block's
     velocities, right after the eight single stores that put them there, would wait for those
     stores to finish (the processor cannot forward several stores into one load): copied for
     the whole colour first, a sweep of the settled pyramid of base 40 took 25 us instead of
     29."""
-    for block in range(first, end):
-        start = np.uint64(block) * np.uint64(BLOCK)
+    for b in range(first, end):
+        start = np.uint64(b) * np.uint64(BLOCK)
         for lane in range(LANES):
-            q, i = block * LANES + lane, start + np.uint64(lane)
+            q, i = b * LANES + lane, start + np.uint64(lane)
             v, w = velocities[owners[1, q]], velocities[owners[2, q]]
             lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = v[0], v[1], v[2]
             lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = w[0], w[1], w[2]
-    for block in range(first, end):
-        visit_block(lanes, np.uint64(block) * np.uint64(BLOCK))
-    for block in range(first, end):
-        start = np.uint64(block) * np.uint64(BLOCK)
+    for b in range(first, end):
+        if block:  # the same function, compiled for each kind of block
+            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), True)
+        else:
+            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), False)
+    for b in range(first, end):
+        start = np.uint64(b) * np.uint64(BLOCK)
         for lane in range(LANES):
-            q, i = block * LANES + lane, start + np.uint64(lane)
+            q, i = b * LANES + lane, start + np.uint64(lane)
             v, w = velocities[owners[1, q]], velocities[owners[2, q]]
             v[0], v[1], v[2] = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
             w[0], w[1], w[2] = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]

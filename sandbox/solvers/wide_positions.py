@@ -69,7 +69,7 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
     :func:`take_poses` no body uses); ``lanes`` packed (:func:`pack`; ``bounds`` = (slop,
     push) (m), as :func:`allowed_separation`)."""
     colours = np.empty(k, dtype=np.int64)
-    ends = np.empty((3, k), dtype=np.int64)
+    ends = np.empty((4, k), dtype=np.int64)
     count = colour(contacts, k, bodies, colours, True, False, ends)
     blocks = (k + LANES - 1) // LANES + count
     owners = np.empty((3, blocks * LANES), dtype=np.int64)
