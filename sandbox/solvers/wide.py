@@ -184,15 +184,29 @@ def pack_lane(c, lanes, i) -> None:
     k, m = c["block_k"], c["block_mass"]
     lanes[i + K11], lanes[i + K12], lanes[i + K22] = k[0], k[1], k[2]
     lanes[i + M11], lanes[i + M12], lanes[i + M22] = m[0], m[1], m[2]
-    for j, base in ((0, i + P0), (1, i + P1)):  # both points used: only those get a colour
-        p = c["points"][j]
-        lanes[base + RN_A], lanes[base + RN_B] = p["rn_a"], p["rn_b"]
-        lanes[base + RT_A], lanes[base + RT_B] = p["rt_a"], p["rt_b"]
-        lanes[base + NORMAL_MASS], lanes[base + TANGENT_MASS] = p["normal_mass"], p["tangent_mass"]
-        lanes[base + BIAS] = p["bias"]
-        lanes[base + NORMAL_IMPULSE] = p["normal_impulse"]
-        lanes[base + TANGENT_IMPULSE] = p["tangent_impulse"]
-        lanes[base + MAX_NORMAL_IMPULSE] = p["max_normal_impulse"]
+    pack_point(c["points"][0], lanes, i + P0)  # both points used: only those get a colour
+    pack_point(c["points"][1], lanes, i + P1)
+
+
+@njit
+def pack_point(p, lanes, base) -> None:
+    """A point's fields into the lane whose point fields begin at ``base`` (this layout's and
+    :mod:`sandbox.solvers.wide_single`'s)."""
+    lanes[base + RN_A], lanes[base + RN_B] = p["rn_a"], p["rn_b"]
+    lanes[base + RT_A], lanes[base + RT_B] = p["rt_a"], p["rt_b"]
+    lanes[base + NORMAL_MASS], lanes[base + TANGENT_MASS] = p["normal_mass"], p["tangent_mass"]
+    lanes[base + BIAS] = p["bias"]
+    lanes[base + NORMAL_IMPULSE] = p["normal_impulse"]
+    lanes[base + TANGENT_IMPULSE] = p["tangent_impulse"]
+    lanes[base + MAX_NORMAL_IMPULSE] = p["max_normal_impulse"]
+
+
+@njit
+def unpack_point(lanes, base, p) -> None:
+    """A point's accumulated impulses back from the lane (``base`` as :func:`pack_point`)."""
+    p["normal_impulse"] = lanes[base + NORMAL_IMPULSE]
+    p["tangent_impulse"] = lanes[base + TANGENT_IMPULSE]
+    p["max_normal_impulse"] = lanes[base + MAX_NORMAL_IMPULSE]
 
 
 @njit
@@ -203,12 +217,8 @@ def unpack(contacts, lanes, owners, blocks: int) -> None:
             continue
         c = contacts[owners[0, q]]
         i = np.uint64(q // LANES) * np.uint64(BLOCK) + np.uint64(q % LANES)
-        for j, base in ((0, i + P0), (1, i + P1)):
-            if j < c["count"]:
-                p = c["points"][j]
-                p["normal_impulse"] = lanes[base + NORMAL_IMPULSE]
-                p["tangent_impulse"] = lanes[base + TANGENT_IMPULSE]
-                p["max_normal_impulse"] = lanes[base + MAX_NORMAL_IMPULSE]
+        unpack_point(lanes, i + P0, c["points"][0])
+        unpack_point(lanes, i + P1, c["points"][1])
 
 
 @njit
@@ -280,32 +290,48 @@ def visit_block(lanes, start, block: bool) -> None:
 def visit_colour(lanes, owners, first: int, end: int, velocities, block: bool) -> None:
     """One visit of every contact of a group of a colour (blocks ``first`` to ``end``, all
     solved with the block solver or all without: ``block``, :func:`groups`): the bodies'
-    velocities (``velocities``, a row (vx, vy, w) per body) into all the group's lanes, the
-    visits, the velocities back. No two contacts of a colour share a moving body, so this is
-    the same as copying in and out block by block; but the vector loads of a block's
-    velocities, right after the eight single stores that put them there, would wait for those
-    stores to finish (the processor cannot forward several stores into one load): copied for
-    the whole colour first, a sweep of the settled pyramid of base 40 took 25 us instead of
-    29."""
-    for b in range(first, end):
-        start = np.uint64(b) * np.uint64(BLOCK)
-        for lane in range(LANES):
-            q, i = b * LANES + lane, start + np.uint64(lane)
-            v, w = velocities[owners[1, q]], velocities[owners[2, q]]
-            lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = v[0], v[1], v[2]
-            lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = w[0], w[1], w[2]
+    velocities (``velocities``, a row (vx, vy, w) per body) into all the group's lanes
+    (:func:`lanes_in`), the visits, the velocities back (:func:`lanes_out`)."""
+    lanes_in(lanes, owners, (first, end, BLOCK, VAX), velocities)
     for b in range(first, end):
         if block:  # the same function, compiled for each kind of block
             visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), True)
         else:
             visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), False)
+    lanes_out(lanes, owners, (first, end, BLOCK, VAX), velocities)
+
+
+@njit
+def lanes_in(lanes, owners, span, velocities) -> None:
+    """The velocities of each lane's bodies into the lanes of blocks ``first`` to ``end``
+    (``span`` = (first, end, numbers per block, where the six velocity fields begin), for
+    this layout and :mod:`sandbox.solvers.wide_single`'s). A whole colour at once: no two of
+    its contacts share a moving body, so this is the same as block by block; but the vector
+    loads of a block's velocities, right after the eight single stores that put them there,
+    would wait for those stores to finish (the processor cannot forward several stores into
+    one load): copied for the whole colour first, a sweep of the settled pyramid of base 40
+    took 25 us instead of 29."""
+    first, end, size, at = span
     for b in range(first, end):
-        start = np.uint64(b) * np.uint64(BLOCK)
+        start = np.uint64(b) * np.uint64(size) + at
         for lane in range(LANES):
             q, i = b * LANES + lane, start + np.uint64(lane)
             v, w = velocities[owners[1, q]], velocities[owners[2, q]]
-            v[0], v[1], v[2] = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
-            w[0], w[1], w[2] = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
+            lanes[i], lanes[i + VAY - VAX], lanes[i + WA - VAX] = v[0], v[1], v[2]
+            lanes[i + VBX - VAX], lanes[i + VBY - VAX], lanes[i + WB - VAX] = w[0], w[1], w[2]
+
+
+@njit
+def lanes_out(lanes, owners, span, velocities) -> None:
+    """The lanes' velocities back into the bodies' rows (``span`` as :func:`lanes_in`)."""
+    first, end, size, at = span
+    for b in range(first, end):
+        start = np.uint64(b) * np.uint64(size) + at
+        for lane in range(LANES):
+            q, i = b * LANES + lane, start + np.uint64(lane)
+            v, w = velocities[owners[1, q]], velocities[owners[2, q]]
+            v[0], v[1], v[2] = lanes[i], lanes[i + VAY - VAX], lanes[i + WA - VAX]
+            w[0], w[1], w[2] = lanes[i + VBX - VAX], lanes[i + VBY - VAX], lanes[i + WB - VAX]
 
 
 @njit

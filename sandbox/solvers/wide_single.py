@@ -20,12 +20,38 @@ import numpy as np
 from sandbox.jit import njit
 from sandbox.math2d import push_along, speed_along
 from sandbox.solvers.impulses import friction_total, normal_total
-from sandbox.solvers.wide import LANES, _offsets
+from sandbox.solvers.wide import (
+    BIAS,
+    II_A,
+    II_B,
+    IM_A,
+    IM_B,
+    LANES,
+    MAX_NORMAL_IMPULSE,
+    MU,
+    NORMAL_IMPULSE,
+    NORMAL_MASS,
+    NX,
+    NY,
+    POINT_FIELDS,
+    RN_A,
+    RN_B,
+    RT_A,
+    RT_B,
+    TANGENT_IMPULSE,
+    TANGENT_MASS,
+    _offsets,
+    lanes_in,
+    lanes_out,
+    pack_point,
+    unpack_point,
+)
 
-IM_A, II_A, IM_B, II_B, NX, NY, MU, RN_A, RN_B, RT_A, RT_B, *_rest = _offsets(23)
-NORMAL_MASS, TANGENT_MASS, BIAS, NORMAL_IMPULSE, TANGENT_IMPULSE, MAX_NORMAL_IMPULSE, *_rest = _rest
-VAX, VAY, WA, VBX, VBY, WB = _rest
-FIELDS = 23
+# a lane: the two-point layout's first fields (inverse masses, normal, friction), its point's
+# fields (from P on, as the two-point layout's points), both bodies' velocities
+P = MU + np.uint64(LANES)
+VAX, VAY, WA, VBX, VBY, WB = (P + f for f in _offsets(len(POINT_FIELDS) + 6)[-6:])
+FIELDS = int(WB) // LANES + 1
 BLOCK = FIELDS * LANES
 
 
@@ -40,30 +66,19 @@ def pack(contacts, lanes, owners, blocks: int) -> None:
                 lanes[i + np.uint64(f * LANES)] = 0.0
             continue
         c = contacts[owners[0, q]]
-        p = c["points"][0]
         lanes[i + IM_A], lanes[i + II_A] = c["inv_mass_a"], c["inv_moment_a"]
         lanes[i + IM_B], lanes[i + II_B] = c["inv_mass_b"], c["inv_moment_b"]
         lanes[i + NX], lanes[i + NY], lanes[i + MU] = c["normal"][0], c["normal"][1], c["friction"]
-        lanes[i + RN_A], lanes[i + RN_B] = p["rn_a"], p["rn_b"]
-        lanes[i + RT_A], lanes[i + RT_B] = p["rt_a"], p["rt_b"]
-        lanes[i + NORMAL_MASS], lanes[i + TANGENT_MASS] = p["normal_mass"], p["tangent_mass"]
-        lanes[i + BIAS] = p["bias"]
-        lanes[i + NORMAL_IMPULSE] = p["normal_impulse"]
-        lanes[i + TANGENT_IMPULSE] = p["tangent_impulse"]
-        lanes[i + MAX_NORMAL_IMPULSE] = p["max_normal_impulse"]
+        pack_point(c["points"][0], lanes, i + P)
 
 
 @njit
 def unpack(contacts, lanes, owners, blocks: int) -> None:
     """The accumulated impulses back into the contact records."""
     for q in range(blocks * LANES):
-        if owners[0, q] < 0:
-            continue
-        p = contacts[owners[0, q]]["points"][0]
-        i = np.uint64(q // LANES) * np.uint64(BLOCK) + np.uint64(q % LANES)
-        p["normal_impulse"] = lanes[i + NORMAL_IMPULSE]
-        p["tangent_impulse"] = lanes[i + TANGENT_IMPULSE]
-        p["max_normal_impulse"] = lanes[i + MAX_NORMAL_IMPULSE]
+        if owners[0, q] >= 0:
+            i = np.uint64(q // LANES) * np.uint64(BLOCK) + np.uint64(q % LANES)
+            unpack_point(lanes, i + P, contacts[owners[0, q]]["points"][0])
 
 
 @njit
@@ -78,18 +93,19 @@ def visit_block(lanes, start) -> None:
         tx, ty = ny, -nx  # t = (n_y, -n_x)
         va = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
         vb = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
+        p = i + P  # where the point's fields begin
         # friction within the cone of the current normal impulse
-        rt_a, rt_b, old = lanes[i + RT_A], lanes[i + RT_B], lanes[i + TANGENT_IMPULSE]
+        rt_a, rt_b, old = lanes[p + RT_A], lanes[p + RT_B], lanes[p + TANGENT_IMPULSE]
         v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)  # v_r . t
-        new = friction_total(old, lanes[i + TANGENT_MASS], v_t, mu * lanes[i + NORMAL_IMPULSE])
-        lanes[i + TANGENT_IMPULSE] = new
+        new = friction_total(old, lanes[p + TANGENT_MASS], v_t, mu * lanes[p + NORMAL_IMPULSE])
+        lanes[p + TANGENT_IMPULSE] = new
         va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, new - old)  # P = (new - old) t
         # the normal impulse
-        rn_a, rn_b, old = lanes[i + RN_A], lanes[i + RN_B], lanes[i + NORMAL_IMPULSE]
+        rn_a, rn_b, old = lanes[p + RN_A], lanes[p + RN_B], lanes[p + NORMAL_IMPULSE]
         v_n = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n
-        new = normal_total(old, lanes[i + NORMAL_MASS], lanes[i + BIAS], v_n)
-        lanes[i + NORMAL_IMPULSE] = new
-        lanes[i + MAX_NORMAL_IMPULSE] = max(lanes[i + MAX_NORMAL_IMPULSE], new)
+        new = normal_total(old, lanes[p + NORMAL_MASS], lanes[p + BIAS], v_n)
+        lanes[p + NORMAL_IMPULSE] = new
+        lanes[p + MAX_NORMAL_IMPULSE] = max(lanes[p + MAX_NORMAL_IMPULSE], new)
         va, vb = push_along(va, vb, mass, nx, ny, rn_a, rn_b, new - old)  # P = (new - old) n
         lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
         lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
@@ -100,19 +116,7 @@ def visit_colour(lanes, owners, first: int, end: int, velocities) -> None:
     """One visit of every one-point contact of a colour (blocks ``first`` to ``end``), as
     :func:`sandbox.solvers.wide.visit_colour`: the velocities into all the colour's lanes,
     the visits, the velocities back."""
-    for block in range(first, end):
-        start = np.uint64(block) * np.uint64(BLOCK)
-        for lane in range(LANES):
-            q, i = block * LANES + lane, start + np.uint64(lane)
-            v, w = velocities[owners[1, q]], velocities[owners[2, q]]
-            lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = v[0], v[1], v[2]
-            lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = w[0], w[1], w[2]
+    lanes_in(lanes, owners, (first, end, BLOCK, VAX), velocities)
     for block in range(first, end):
         visit_block(lanes, np.uint64(block) * np.uint64(BLOCK))
-    for block in range(first, end):
-        start = np.uint64(block) * np.uint64(BLOCK)
-        for lane in range(LANES):
-            q, i = block * LANES + lane, start + np.uint64(lane)
-            v, w = velocities[owners[1, q]], velocities[owners[2, q]]
-            v[0], v[1], v[2] = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
-            w[0], w[1], w[2] = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
+    lanes_out(lanes, owners, (first, end, BLOCK, VAX), velocities)
