@@ -933,8 +933,8 @@ for name, view in views.items():
 # **Tall stacks sag with the defaults.** With 4 substeps the contacts are capped at
 # $1/(8h)$ = 30 Hz, half the 60 Hz that `contact_hertz` asks for, and the pyramid of base 40
 # sags 12.4 cm, not much better than the iterative solver's 17.8 cm. Why not allow stiffer
-# contacts at 4 substeps? The soft step solves each contact once per substep, in turn, with the others'
-# impulses of the moment: for one spring that is exact implicit Euler (section 2), for a stack
+# contacts at 4 substeps? The soft step solves each contact once per substep, in turn, with
+# the others' impulses of the moment: for one spring that is exact implicit Euler (section 2), for a stack
 # of springs only an approximation of it, and the approximation gets worse as $h\omega$ grows.
 # Box2D v3.0 capped the contacts at a quarter of the substep rate ($h\omega = \pi/2$ between
 # boxes; here 60 Hz at 4 substeps). This engine did too, and there the pyramid of base 40 never
