@@ -9,7 +9,7 @@ ones over eight contacts at a time (:mod:`sandbox.solvers.wide`,
 from __future__ import annotations
 
 from sandbox.jit import njit
-from sandbox.math2d import cross, effective_mass, nudged, rotate
+from sandbox.math2d import cross, effective_mass, nudged, push_along, rotate, speed_along
 
 MAX_CORRECTION = 0.2  # m: the largest push of one point in one position pass (as Box2D)
 
@@ -26,6 +26,28 @@ def normal_total(old: float, normal_mass: float, bias: float, v_n: float) -> flo
     """The running total of the normal impulse that makes v_r . n = bias, kept >= 0 (N s)
     (slides, "Collision Equation", step 1, with the target bias instead of -e v_r . n)."""
     return max(old + normal_mass * (bias - v_n), 0.0)
+
+
+@njit(inline="always")
+def friction_step(va, vb, mass, t, rt, old: float, tangent_mass: float, limit: float):
+    """One point's friction visit: the new running total (:func:`friction_total`, from v_r . t
+    at the arms' ``rt`` = (r_a x t, r_b x t)) and the velocities after its change
+    P = (new - old) t. Returns ``(new, va, vb)``."""
+    v_t = speed_along(va, vb, t[0], t[1], rt[0], rt[1])  # v_r . t
+    new = friction_total(old, tangent_mass, v_t, limit)
+    va, vb = push_along(va, vb, mass, t[0], t[1], rt[0], rt[1], new - old)
+    return new, va, vb
+
+
+@njit(inline="always")
+def normal_step(va, vb, mass, n, rn, old: float, normal_mass: float, bias: float):
+    """One point's normal visit: the new running total (:func:`normal_total`, from v_r . n at
+    the arms' ``rn``) and the velocities after its change P = (new - old) n. Returns
+    ``(new, va, vb)``."""
+    v_n = speed_along(va, vb, n[0], n[1], rn[0], rn[1])  # v_r . n
+    new = normal_total(old, normal_mass, bias, v_n)
+    va, vb = push_along(va, vb, mass, n[0], n[1], rn[0], rn[1], new - old)
+    return new, va, vb
 
 
 @njit(inline="always")

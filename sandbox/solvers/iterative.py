@@ -39,7 +39,7 @@ from sandbox.joints.solve import solve_joint_velocities
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
 from sandbox.solvers import wide_single as single
 from sandbox.solvers.common import masses, normal_speed
-from sandbox.solvers.impulses import block_totals, friction_total, normal_total
+from sandbox.solvers.impulses import block_totals, friction_step, normal_step
 from sandbox.solvers.wide import (
     COLOURS,
     LANES,
@@ -86,12 +86,12 @@ def friction(points, count: int, nx: float, ny: float, mass, va, vb, mu: float):
     tx, ty = ny, -nx  # t = (n_y, -n_x)
     for j in range(count):
         p = points[j]
-        rt_a, rt_b = p["rt_a"], p["rt_b"]  # r x t at each body
-        old = p["tangent_impulse"]
-        v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)  # v_r . t
-        new = friction_total(old, p["tangent_mass"], v_t, mu * p["normal_impulse"])
+        rt = p["rt_a"], p["rt_b"]  # r x t at each body
+        limit = mu * p["normal_impulse"]
+        new, va, vb = friction_step(
+            va, vb, mass, (tx, ty), rt, p["tangent_impulse"], p["tangent_mass"], limit
+        )
         p["tangent_impulse"] = new
-        va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, new - old)  # P = (new - old) t
     return va, vb
 
 
@@ -101,12 +101,11 @@ def normal(points, count: int, nx: float, ny: float, mass, va, vb):
     (slides, "Collision Equation", step 1, with the target bias instead of -e v_r . n)."""
     for j in range(count):
         p = points[j]
-        rn_a, rn_b = p["rn_a"], p["rn_b"]  # r x n at each body
-        old = p["normal_impulse"]
-        v_n = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n
-        new = normal_total(old, p["normal_mass"], p["bias"], v_n)
+        rn = p["rn_a"], p["rn_b"]  # r x n at each body
+        new, va, vb = normal_step(
+            va, vb, mass, (nx, ny), rn, p["normal_impulse"], p["normal_mass"], p["bias"]
+        )
         p["normal_impulse"] = new
-        va, vb = push_along(va, vb, mass, nx, ny, rn_a, rn_b, new - old)  # P = (new - old) n
     return va, vb
 
 
@@ -218,10 +217,13 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     empty = len(bodies)  # the row of velocities that empty lanes read and write
     # two-point contacts in two groups a colour: with the block solver (2 c), without (2 c + 1)
     lanes, owners, starts = buffers(k, 2 * count)
-    blocks = place(ends, k, groups(ends, k, colours, count), 2 * count, owners, empty, starts, 0)
+    keys = groups(ends, k, colours, count, 2, True)
+    blocks = place(ends, k, keys, 2 * count, owners, empty, starts)
     owners1 = np.empty((3, ((k + LANES - 1) // LANES + count) * LANES), dtype=np.int64)
     starts1 = np.empty(count + 1, dtype=np.int64)
-    blocks1 = place(ends, k, colours, count, owners1, empty, starts1, 1)
+    blocks1 = place(
+        ends, k, groups(ends, k, colours, count, 1, False), count, owners1, empty, starts1
+    )
     alone = np.nonzero(colours == COLOURS)[0]
     half = (len(alone) + 1) // 2
     if not JIT_ENABLED:  # uncompiled, lanes buy nothing: the same visits one by one, same numbers

@@ -31,7 +31,7 @@ import numpy as np
 
 from sandbox.jit import literally, njit
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
-from sandbox.solvers.impulses import block_totals, friction_total, normal_total
+from sandbox.solvers.impulses import block_totals, friction_step, normal_step
 
 LANES = 8  # contacts a block holds: one AVX-512 register of doubles
 COLOURS = 63  # at most (a body's colours are the bits of one int64); the rest one by one
@@ -121,46 +121,51 @@ def buffers(k: int, count: int):
 
 
 @njit
-def place(ends, k: int, colours, count: int, owners, empty: int, starts, points: int = 2) -> int:
-    """Where each of the first ``k`` contacts with ``points`` points goes, colour by colour
-    (``points`` 0: every coloured contact; ``ends`` as :func:`colour` fills it): contact i of
-    its colour in
-    block i // LANES, lane i % LANES (:mod:`module layout <sandbox.solvers.wide>`);
-    ``owners[:, block * LANES + lane]``: the contact's index in ``contacts`` and its bodies a
-    and b (an empty lane: -1 and twice ``empty``, a row of velocities no body uses);
-    ``starts[c]``: colour c's first block (``starts[count]``: the end). Returns the number of
-    blocks."""
+def place(ends, k: int, keys, count: int, owners, empty: int, starts) -> int:
+    """Where each of the first ``k`` contacts goes, group by group (``keys[i]``: contact i's
+    group, below ``count``, or ``count`` and above to leave it out: :func:`groups`; ``ends``
+    as :func:`colour` fills it): contact i of its group in block i // LANES, lane i % LANES
+    (:mod:`module layout <sandbox.solvers.wide>`); ``owners[:, block * LANES + lane]``: the
+    contact's index in ``contacts`` and its bodies a and b (an empty lane: -1 and twice
+    ``empty``, a row of velocities no body uses); ``starts[g]``: group g's first block
+    (``starts[count]``: the end). Returns the number of blocks."""
     sizes = np.zeros(count + 1, dtype=np.int64)
     for i in range(k):
-        if points == 0 or ends[0, i] == points:
-            sizes[min(colours[i], count)] += 1
+        sizes[min(keys[i], count)] += 1
     starts[0] = 0
-    for c in range(count):
-        starts[c + 1] = starts[c] + (sizes[c] + LANES - 1) // LANES
+    for g in range(count):
+        starts[g + 1] = starts[g] + (sizes[g] + LANES - 1) // LANES
     blocks = starts[count]
     owners[0, : blocks * LANES] = -1
     owners[1:, : blocks * LANES] = empty
     filled = np.zeros(count, dtype=np.int64)
     for i in range(k):
-        c = colours[i]
-        if c < count and (points == 0 or ends[0, i] == points):
-            q = starts[c] * LANES + filled[c]
+        g = keys[i]
+        if g < count:
+            q = starts[g] * LANES + filled[g]
             owners[0, q], owners[1, q], owners[2, q] = i, ends[1, i], ends[2, i]
-            filled[c] += 1
+            filled[g] += 1
     return blocks
 
 
 @njit
-def groups(ends, k: int, colours, count: int):
-    """Each two-point contact's group for :func:`place`: 2 c for one of colour c that uses the
-    block solver, 2 c + 1 for one that solves its points one after the other, ``2 count`` for
-    any other contact (left out). A block then holds contacts solved one way only
-    (:func:`visit_block`); within a colour the order is free."""
-    key = np.empty(k, dtype=np.int64)
+def groups(ends, k: int, colours, count: int, points: int, by_solver: bool):
+    """Each contact's group for :func:`place`: its colour if it has ``points`` points; with
+    ``by_solver`` (the two-point velocity lanes) 2 c for one of colour c that uses the block
+    solver and 2 c + 1 for one that solves its points one after the other, so that a block
+    holds contacts solved one way only (:func:`visit_block`; within a colour the order is
+    free). Any other contact gets the number of groups (``count``, or ``2 count``): left out."""
+    size = 2 * count if by_solver else count
+    keys = np.empty(k, dtype=np.int64)
     for i in range(k):
         c = colours[i]
-        key[i] = 2 * c + 1 - ends[3, i] if c < count and ends[0, i] == 2 else 2 * count
-    return key
+        if c >= count or ends[0, i] != points:
+            keys[i] = size
+        elif by_solver:
+            keys[i] = 2 * c + 1 - ends[3, i]
+        else:
+            keys[i] = c
+    return keys
 
 
 @njit
@@ -240,45 +245,35 @@ def visit_block(lanes, start, block: bool) -> None:
         p0, p1 = i + P0, i + P1  # where each point's fields begin
         mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
         nx, ny, mu = lanes[i + NX], lanes[i + NY], lanes[i + MU]
-        tx, ty = ny, -nx  # t = (n_y, -n_x)
         va = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
         vb = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
         # friction at each point
-        rt_a, rt_b, old = lanes[p0 + RT_A], lanes[p0 + RT_B], lanes[p0 + TANGENT_IMPULSE]
-        v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)  # v_r . t
-        new = friction_total(old, lanes[p0 + TANGENT_MASS], v_t, mu * lanes[p0 + NORMAL_IMPULSE])
+        t = ny, -nx  # t = (n_y, -n_x)
+        limit = mu * lanes[p0 + NORMAL_IMPULSE]
+        rt, old = (lanes[p0 + RT_A], lanes[p0 + RT_B]), lanes[p0 + TANGENT_IMPULSE]
+        new, va, vb = friction_step(va, vb, mass, t, rt, old, lanes[p0 + TANGENT_MASS], limit)
         lanes[p0 + TANGENT_IMPULSE] = new
-        va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, new - old)  # P = (new - old) t
-        rt_a, rt_b, old = lanes[p1 + RT_A], lanes[p1 + RT_B], lanes[p1 + TANGENT_IMPULSE]
-        v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)
-        new = friction_total(old, lanes[p1 + TANGENT_MASS], v_t, mu * lanes[p1 + NORMAL_IMPULSE])
+        limit = mu * lanes[p1 + NORMAL_IMPULSE]
+        rt, old = (lanes[p1 + RT_A], lanes[p1 + RT_B]), lanes[p1 + TANGENT_IMPULSE]
+        new, va, vb = friction_step(va, vb, mass, t, rt, old, lanes[p1 + TANGENT_MASS], limit)
         lanes[p1 + TANGENT_IMPULSE] = new
-        va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, new - old)
         # the normal impulses
-        rn_a1, rn_b1, rn_a2, rn_b2 = (
-            lanes[p0 + RN_A],
-            lanes[p0 + RN_B],
-            lanes[p1 + RN_A],
-            lanes[p1 + RN_B],
-        )
+        n = nx, ny
+        rn1, rn2 = (lanes[p0 + RN_A], lanes[p0 + RN_B]), (lanes[p1 + RN_A], lanes[p1 + RN_B])
         a1, a2 = lanes[p0 + NORMAL_IMPULSE], lanes[p1 + NORMAL_IMPULSE]
         bias1, bias2 = lanes[p0 + BIAS], lanes[p1 + BIAS]
         mass1, mass2 = lanes[p0 + NORMAL_MASS], lanes[p1 + NORMAL_MASS]
-        v_n1 = speed_along(va, vb, nx, ny, rn_a1, rn_b1)  # v_r . n at each point
-        v_n2 = speed_along(va, vb, nx, ny, rn_a2, rn_b2)
-        # together: b, the normal speeds without the impulses so far, minus the bias
-        k11, k12, k22 = lanes[i + K11], lanes[i + K12], lanes[i + K22]
-        m = lanes[i + M11], lanes[i + M12], lanes[i + M22]  # K^-1
-        b1 = v_n1 - bias1 - (k11 * a1 + k12 * a2)
-        b2 = v_n2 - bias2 - (k12 * a1 + k22 * a2)
-        if block:
+        if block:  # together: b, the normal speeds without the impulses so far, minus the bias
+            k11, k12, k22 = lanes[i + K11], lanes[i + K12], lanes[i + K22]
+            m = lanes[i + M11], lanes[i + M12], lanes[i + M22]  # K^-1
+            b1 = speed_along(va, vb, nx, ny, rn1[0], rn1[1]) - bias1 - (k11 * a1 + k12 * a2)
+            b2 = speed_along(va, vb, nx, ny, rn2[0], rn2[1]) - bias2 - (k12 * a1 + k22 * a2)
             x1, x2 = block_totals(a1, a2, b1, b2, k12, m, mass1, mass2)
+            va, vb = push_along(va, vb, mass, nx, ny, rn1[0], rn1[1], x1 - a1)  # P = (x1 - a1) n
+            va, vb = push_along(va, vb, mass, nx, ny, rn2[0], rn2[1], x2 - a2)
         else:  # one after the other (the second point sees what the first one's impulse did)
-            x1 = normal_total(a1, mass1, bias1, v_n1)
-            va1, vb1 = push_along(va, vb, mass, nx, ny, rn_a1, rn_b1, x1 - a1)
-            x2 = normal_total(a2, mass2, bias2, speed_along(va1, vb1, nx, ny, rn_a2, rn_b2))
-        va, vb = push_along(va, vb, mass, nx, ny, rn_a1, rn_b1, x1 - a1)  # P = (x1 - a1) n
-        va, vb = push_along(va, vb, mass, nx, ny, rn_a2, rn_b2, x2 - a2)
+            x1, va, vb = normal_step(va, vb, mass, n, rn1, a1, mass1, bias1)
+            x2, va, vb = normal_step(va, vb, mass, n, rn2, a2, mass2, bias2)
         lanes[p0 + NORMAL_IMPULSE], lanes[p1 + NORMAL_IMPULSE] = x1, x2
         lanes[p0 + MAX_NORMAL_IMPULSE] = max(lanes[p0 + MAX_NORMAL_IMPULSE], x1)
         lanes[p1 + MAX_NORMAL_IMPULSE] = max(lanes[p1 + MAX_NORMAL_IMPULSE], x2)

@@ -32,7 +32,7 @@ from sandbox.math2d import pose_of, set_pose
 from sandbox.solvers.impulses import push_point
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.soft import excess_depth
-from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, place
+from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, groups, place
 
 MEASURED = "one pass of 2,369 contacts: 23 us eight at a time against 70 us one by one"
 
@@ -74,7 +74,9 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
     blocks = (k + LANES - 1) // LANES + count
     owners = np.empty((3, blocks * LANES), dtype=np.int64)
     starts = np.empty(count + 1, dtype=np.int64)
-    blocks = place(ends, k, colours, count, owners, len(bodies), starts)
+    blocks = place(
+        ends, k, groups(ends, k, colours, count, 2, False), count, owners, len(bodies), starts
+    )
     alone = np.nonzero(colours == COLOURS)[0]
     q = 0 if wide else k - len(alone)
     order = np.empty(q + len(alone), dtype=np.int64)

@@ -18,8 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.math2d import push_along, speed_along
-from sandbox.solvers.impulses import friction_total, normal_total
+from sandbox.solvers.impulses import friction_step, normal_step
 from sandbox.solvers.wide import (
     BIAS,
     II_A,
@@ -90,23 +89,21 @@ def visit_block(lanes, start) -> None:
         i = start + np.uint64(lane)
         mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
         nx, ny, mu = lanes[i + NX], lanes[i + NY], lanes[i + MU]
-        tx, ty = ny, -nx  # t = (n_y, -n_x)
         va = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
         vb = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
         p = i + P  # where the point's fields begin
-        # friction within the cone of the current normal impulse
-        rt_a, rt_b, old = lanes[p + RT_A], lanes[p + RT_B], lanes[p + TANGENT_IMPULSE]
-        v_t = speed_along(va, vb, tx, ty, rt_a, rt_b)  # v_r . t
-        new = friction_total(old, lanes[p + TANGENT_MASS], v_t, mu * lanes[p + NORMAL_IMPULSE])
+        # friction within the cone of the current normal impulse, t = (n_y, -n_x)
+        rt, limit = (lanes[p + RT_A], lanes[p + RT_B]), mu * lanes[p + NORMAL_IMPULSE]
+        old, tangent_mass = lanes[p + TANGENT_IMPULSE], lanes[p + TANGENT_MASS]
+        new, va, vb = friction_step(va, vb, mass, (ny, -nx), rt, old, tangent_mass, limit)
         lanes[p + TANGENT_IMPULSE] = new
-        va, vb = push_along(va, vb, mass, tx, ty, rt_a, rt_b, new - old)  # P = (new - old) t
         # the normal impulse
-        rn_a, rn_b, old = lanes[p + RN_A], lanes[p + RN_B], lanes[p + NORMAL_IMPULSE]
-        v_n = speed_along(va, vb, nx, ny, rn_a, rn_b)  # v_r . n
-        new = normal_total(old, lanes[p + NORMAL_MASS], lanes[p + BIAS], v_n)
+        rn, old = (lanes[p + RN_A], lanes[p + RN_B]), lanes[p + NORMAL_IMPULSE]
+        new, va, vb = normal_step(
+            va, vb, mass, (nx, ny), rn, old, lanes[p + NORMAL_MASS], lanes[p + BIAS]
+        )
         lanes[p + NORMAL_IMPULSE] = new
         lanes[p + MAX_NORMAL_IMPULSE] = max(lanes[p + MAX_NORMAL_IMPULSE], new)
-        va, vb = push_along(va, vb, mass, nx, ny, rn_a, rn_b, new - old)  # P = (new - old) n
         lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
         lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
 
