@@ -4,12 +4,9 @@ order (colour by colour, then the contacts no colour could take)."""
 
 from __future__ import annotations
 
-import platform
-import re
-
 import numpy as np
 import pytest
-from test_wide_sweeps import CASES
+from test_wide_sweeps import CASES, instructions
 
 from sandbox.penetration import position_impulses, position_order, wide_position_impulses
 from sandbox.records import CONTACT
@@ -103,18 +100,11 @@ def test_empty_contact_list():
     assert wide_position_impulses(contacts, bodies, BETA, BOUNDS, layering, lanes) == (0.0, False)
 
 
-@pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64"), reason="x86 instructions")
 def test_the_lane_loop_compiles_to_vector_instructions():
-    numba = pytest.importorskip("numba")
     from sandbox.solvers import wide_positions
 
-    if not hasattr(wide_positions.visit_block, "py_func"):
-        pytest.skip("compiling is off (SANDBOX_JIT=0)")
-    if numba.config.BOUNDSCHECK:
-        pytest.skip("bounds checks keep the loop one lane at a time")
-    fresh = numba.njit(error_model="numpy")(wide_positions.visit_block.py_func)
-    fresh(np.zeros(wide_positions.BLOCK), np.uint64(0), 0.2)
-    assembly = fresh.inspect_asm(fresh.signatures[0])
-    packed = len(re.findall(r"\bv?(mul|div|sqrt)pd\b", assembly))
-    single = len(re.findall(r"\bv?(mul|div|sqrt)sd\b", assembly))
+    args = (np.zeros(wide_positions.BLOCK), np.uint64(0), 0.2)
+    packed, single = instructions(
+        wide_positions.visit_block, args, "mul|div|sqrt", error_model="numpy"
+    )
     assert packed > 20 and single < packed, (packed, single)

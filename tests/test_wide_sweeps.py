@@ -143,23 +143,37 @@ def test_empty_and_tiny_contact_lists():
     assert not np.any(bodies["vel"])
 
 
-@pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64"), reason="x86 instructions")
-def test_the_lane_loop_compiles_to_vector_instructions():
-    # what the wide sweeps are for: numba (LLVM) turns the loop over a block's eight lanes into
-    # packed instructions (mulpd: several doubles at once), as long as the loop indexes the
-    # lanes with unsigned numbers and hands the array to no other function
+def instructions(kernel, args, ops: str = "mul", **options) -> tuple[int, int]:
+    """(packed, single): how many packed (``v<op>pd``) and single (``v<op>sd``) instructions of
+    the ``ops`` (a regex alternative, as "mul|div") a fresh compile of ``kernel`` for ``args``
+    holds (fresh, not from the cache, so that its assembly is kept). Skips the test where
+    that says nothing: not x86, compiling off, or bounds checks on (they keep every loop one
+    lane at a time)."""
     numba = pytest.importorskip("numba")
-    from sandbox.solvers import wide, wide_single
-
-    if not hasattr(wide.visit_block, "py_func"):
+    if platform.machine() not in ("x86_64", "AMD64"):
+        pytest.skip("x86 instructions")
+    if not hasattr(kernel, "py_func"):
         pytest.skip("compiling is off (SANDBOX_JIT=0)")
     if numba.config.BOUNDSCHECK:
         pytest.skip("bounds checks keep the loop one lane at a time")
-    # the two-point lanes' function is compiled once with the block solver and once without
-    for module, extra in ((wide, (True,)), (wide, (False,)), (wide_single, ())):
-        fresh = numba.njit(module.visit_block.py_func)  # not from the cache: its assembly is kept
-        fresh(np.zeros(module.BLOCK), np.uint64(0), *extra)
-        assembly = fresh.inspect_asm(fresh.signatures[-1])
-        packed = len(re.findall(r"\bv?mulpd\b", assembly))
-        single = len(re.findall(r"\bv?mulsd\b", assembly))
-        assert packed > 10 and single < packed, (module.__name__, extra, packed, single)
+    fresh = numba.njit(**options)(kernel.py_func)
+    fresh(*args)
+    assembly = fresh.inspect_asm(fresh.signatures[-1])
+    packed = len(re.findall(rf"\bv?({ops})pd\b", assembly))
+    return packed, len(re.findall(rf"\bv?({ops})sd\b", assembly))
+
+
+@pytest.mark.parametrize("kind", ["block solver", "point by point", "one point"])
+def test_the_lane_loop_compiles_to_vector_instructions(kind):
+    # what the wide sweeps are for: numba (LLVM) turns the loop over a block's eight lanes into
+    # packed instructions (mulpd: several doubles at once), as long as the loop indexes the
+    # lanes with unsigned numbers and hands the array to no other function; the two-point
+    # lanes' function is compiled once with the block solver and once without
+    from sandbox.solvers import wide, wide_single
+
+    module = wide_single if kind == "one point" else wide
+    extra = () if kind == "one point" else (kind == "block solver",)
+    packed, single = instructions(
+        module.visit_block, (np.zeros(module.BLOCK), np.uint64(0), *extra)
+    )
+    assert packed > 10 and single < packed, (packed, single)
