@@ -239,9 +239,6 @@ PROXY = np.dtype(
         ("fixed", I8),  # bit flags, pairs sharing a bit are left out (step.place_proxies)
         ("lo", F8),  # the lower end of shape k's box along the sweep direction (m)
         ("order", I8),  # the shape at place k of the sorted sweep
-        ("sweep_box", F8, 4),  # its box, its body and fixed flag, copied in sweep order
-        ("sweep_body", I8),
-        ("sweep_fixed", I8),
     ],
     align=True,
 )

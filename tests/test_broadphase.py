@@ -279,8 +279,10 @@ def lattice(n: int, spacing: float = 10.0, radius: float = 0.2) -> np.ndarray:
 
 def test_sap_counts_the_candidates_of_every_direction():
     # the count that chooses the direction is the sweep's own test count: with no pair
-    # filtered (each shape its own body, none fixed) the two must agree exactly
-    from sandbox.broadphase.sap import DIRECTIONS, candidates, proxies_of
+    # filtered (each shape its own body, none fixed) the two must agree exactly in one band;
+    # in bands the count is of the visits, and a pair that shares two bands is visited twice
+    # and tested once
+    from sandbox.broadphase.sap import DIRECTIONS, ONE_BAND, band_layout, candidates, proxies_of
 
     m = 500
     aabb = spread_world(m, seed=5)
@@ -288,41 +290,51 @@ def test_sap_counts_the_candidates_of_every_direction():
     static, body = np.zeros(m, bool), np.arange(m)
     expected = reference_pairs(aabb, static, body).tolist()
     for d in range(len(DIRECTIONS)):
-        pairs, tests = find_pairs("sap", aabb, axis=d)
-        assert tests == candidates(proxies, d)
+        pairs, tests = find_pairs("sap", aabb, axis=d, bands=False)
+        assert tests == candidates(proxies, d, ONE_BAND)
         assert pairs.tolist() == expected  # the same pairs whatever the direction
+        pairs, tests = find_pairs("sap", aabb, axis=d)
+        visits = candidates(proxies, d, band_layout(proxies, d))
+        assert tests <= visits < 1.5 * tests if d < 2 else tests == visits
+        assert pairs.tolist() == expected
 
 
 def test_sap_sweeps_a_lattice_along_a_slanted_direction():
     # a row of a grid shares its lower end along y (and a column along x): swept along an
-    # axis, each disc is tested against its whole row; along the slanted direction the rows
-    # fan out 10 sin(0.15) = 1.5 m apart, beyond a disc's 0.4 m
+    # axis in one band, each disc is tested against its whole row; along the slanted
+    # direction the rows fan out 10 sin(0.15) = 1.5 m apart, beyond a disc's 0.4 m
     aabb = lattice(1000)
-    along_y = find_pairs("sap", aabb, axis=1)[1]
-    pairs, tests = find_pairs("sap", aabb)
-    assert describe("sap", aabb)["axis"] in (2, 3)
+    along_y = find_pairs("sap", aabb, axis=1, bands=False)[1]
+    pairs, tests = find_pairs("sap", aabb, bands=False)
+    assert describe("sap", aabb, bands=False)["axis"] in (2, 3)
     assert len(pairs) == 0 and along_y > 10_000
     assert tests < 0.1 * along_y
+    # in bands each row is swept on its own, along x: not one test
+    assert describe("sap", aabb)["axis"] in (0, 1)
+    assert find_pairs("sap", aabb)[1] == 0
 
 
 def test_sap_sweeps_a_wide_scatter_along_x():
-    # a world ten times wider than high: x is the direction with the fewest candidates (the
-    # slanted ones lengthen every interval and mix in the height)
+    # a world ten times wider than high: in one band x is the direction with the fewest
+    # candidates (the slanted ones lengthen every interval and mix in the height)
     rng = np.random.default_rng(2)
     c = rng.uniform((0.0, 0.0), (100.0, 10.0), (800, 2))
     aabb = np.concatenate([c - 0.2, c + 0.2], axis=1)
-    assert describe("sap", aabb)["axis"] == 0
+    assert describe("sap", aabb, bands=False)["axis"] == 0
 
 
 def test_sap_keeps_a_pyramid_on_an_axis():
-    # a pyramid of 20 1 m boxes at the base, grown by 2 cm: the slanted y has 14% fewer
-    # candidates than x (2,977 against 3,465), but a slanted test weighs a third more, so x
+    # a pyramid of 20 1 m boxes at the base, grown by 2 cm: in one band the slanted y has 14%
+    # fewer candidates than x (2,977 against 3,465), but a slanted test weighs a third more,
+    # so x; in bands x and y take under half the tests of either
     boxes = []
     for row in range(20):
         for k in range(20 - row):
             x, y = k - 0.5 * (19 - row), row + 0.5
             boxes.append([x - 0.52, y - 0.52, x + 0.52, y + 0.52])
     aabb = np.array(boxes)
-    tests = [find_pairs("sap", aabb, axis=d)[1] for d in range(4)]
+    tests = [find_pairs("sap", aabb, axis=d, bands=False)[1] for d in range(4)]
     assert tests[3] < tests[0] < tests[3] * 4 / 3  # the case the weight decides
-    assert describe("sap", aabb)["axis"] == 0
+    assert describe("sap", aabb, bands=False)["axis"] == 0
+    banded = find_pairs("sap", aabb)[1]
+    assert describe("sap", aabb)["axis"] in (0, 1) and banded < 0.5 * tests[3]
