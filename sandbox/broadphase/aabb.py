@@ -17,6 +17,7 @@ import numpy as np
 from sandbox.jit import njit
 from sandbox.math2d import rotate
 from sandbox.records import BODY, CIRCLE, SHAPE, VERTEX
+from sandbox.sorting import sort_in_place
 
 
 @njit
@@ -183,7 +184,7 @@ def sort_pairs_into(buf: np.ndarray, k: int, m: int, count: np.ndarray, out: np.
     for i in range(m):
         lo, hi = (count[i - 1] if i > 0 else 0), count[i]
         if hi - lo > 32:
-            out[lo:hi, 1] = np.sort(out[lo:hi, 1])
+            sort_in_place(out[lo:hi, 1])
         else:
             for a in range(lo + 1, hi):
                 v = out[a, 1]

@@ -22,6 +22,7 @@ import numpy as np
 
 from sandbox.broadphase.aabb import check_tree_options, collect, overlap, put_pair, skip_pair
 from sandbox.jit import njit
+from sandbox.sorting import argsort
 
 CAPACITY = 8
 MAX_DEPTH = 40
@@ -72,7 +73,7 @@ def sort_kept(idx: np.ndarray, key: np.ndarray, s: int, o: int, aabb: np.ndarray
             key[b + 1] = kv
             idx[b + 1] = iv
     else:
-        order = np.argsort(key[s : s + o], kind="mergesort")
+        order = argsort(key[s : s + o])
         kept = idx[s : s + o].copy()
         for r in range(o):
             idx[s + r] = kept[order[r]]

@@ -47,6 +47,7 @@ import numpy as np
 from sandbox.broadphase.aabb import put_pair, sort_pairs
 from sandbox.jit import njit
 from sandbox.records import PROXY
+from sandbox.sorting import argsort, sort_in_place
 
 SLANT = 0.15  # rad: the turn of the two slanted sweep directions
 DIRECTIONS = np.array(
@@ -106,8 +107,8 @@ def candidates(proxies, d: int, layout) -> int:
     total = 0
     for b in range(starts.shape[0] - 1):
         s0, s1 = starts[b], starts[b + 1]
-        lo[s0:s1].sort()
-        hi[s0:s1].sort()
+        sort_in_place(lo[s0:s1])
+        sort_in_place(hi[s0:s1])
         j = s0  # the boxes with lo_j <= the current hi
         for i in range(s0, s1):
             while j < s1 and lo[j] <= hi[i]:
@@ -305,7 +306,7 @@ def update_order(proxies, d: int, sorted_d: int) -> None:
     keys = np.empty(m)
     for i in range(m):
         keys[i] = proxies[i]["lo"]
-    order = np.argsort(keys, kind="mergesort")  # stable: ties in index order
+    order = argsort(keys)  # stable: ties in index order
     for s in range(m):
         proxies[s]["order"] = order[s]
 

@@ -34,6 +34,7 @@ from sandbox.solvers.common import (
     tangent_speed,
 )
 from sandbox.solvers.iterative import solve as relax
+from sandbox.sorting import argsort
 
 UNREACHED = 1 << 40  # layer of bodies with no path of contacts to a fixed body
 LAYER_SWEEPS = 3  # sweeps over each layer's contacts in the shock pass
@@ -142,7 +143,7 @@ def shock_pass(contacts, k: int, bodies, gap: float = np.inf) -> int:
     level = np.empty(k, dtype=np.int64)
     for i in range(k):
         level[i] = max(layer[contacts[i]["a"]], layer[contacts[i]["b"]])
-    order = np.argsort(level, kind="mergesort")  # stable: contacts of a layer in pair order
+    order = argsort(level)  # stable: contacts of a layer in pair order
     s = 0
     while s < k:
         e = s
