@@ -185,15 +185,14 @@ for n in SIZES:
             best, spent, calls = min(best, dt), spent + dt, calls + 1
         results[name].append((n, tests, 1e3 * best, len(pairs)))
 
-rows = []
-for n in SIZES:
-    row = [n]
-    for name in SERIES:
-        hit = [r for r in results[name] if r[0] == n]
-        row += [hit[0][1], hit[0][2]] if hit else ["-", "-"]
-    rows.append(row)
-headers = ["N"] + [f"{name} {what}" for name in SERIES for what in ("tests", "ms")]
-print_table(headers, rows, digits=3)
+for what, column in (("pair tests per call", 1), ("ms per call", 2)):  # two narrow tables
+    rows = []
+    for n in SIZES:
+        hits = [[r for r in results[name] if r[0] == n] for name in SERIES]
+        rows.append([n] + [hit[0][column] if hit else "-" for hit in hits])
+    print(what)
+    print_table(["N", *SERIES], rows, digits=3)
+    print()
 
 # %% [markdown]
 # The growth exponent $p$ in $\text{cost} \approx c N^p$ is the slope of the log-log curve,
@@ -359,15 +358,30 @@ def lattice_boxes(side: int, spacing: float, radius: float = 0.2) -> np.ndarray:
     return circle_aabbs(spacing * ij, np.full(side * side, radius))
 
 
-rows = []
-for label, world in (("1000 balls on a 10 m grid", lattice_boxes(32, 10.0)), ("random", boxes)):
-    tests = [find_pairs("sap", world, axis=d, bands=False)[1] for d in range(len(DIRECTIONS))]
-    chosen = NAMES[describe("sap", world, bands=False)["axis"]]
-    banded = NAMES[describe("sap", world)["axis"]]
-    rows.append([label, *tests, chosen, f"{find_pairs('sap', world)[1]} along {banded}"])
-print_table(
-    ["world", *(f"one band, along {n}" for n in NAMES), "chosen in one band", "in bands"], rows
+worlds = {"1000 balls on a 10 m grid": lattice_boxes(32, 10.0), "random": boxes}
+rows = [  # pair tests of each sweep, one world a column
+    [
+        f"one band, along {NAMES[d]}",
+        *(find_pairs("sap", w, axis=d, bands=False)[1] for w in worlds.values()),
+    ]
+    for d in range(len(DIRECTIONS))
+]
+rows.append(
+    [
+        "chosen in one band",
+        *(NAMES[describe("sap", w, bands=False)["axis"]] for w in worlds.values()),
+    ]
 )
+rows.append(
+    [
+        "in bands (the step)",
+        *(
+            f"{find_pairs('sap', w)[1]} along {NAMES[describe('sap', w)['axis']]}"
+            for w in worlds.values()
+        ),
+    ]
+)
+print_table(["sweep: pair tests", *worlds], rows)
 
 small = lattice_boxes(6, 2.0)
 fig, axes = plt.subplots(1, 2, figsize=(9.0, 4.2))
@@ -379,7 +393,8 @@ for ax, d in zip(axes, (1, 3), strict=True):
     ax.set_xlabel(f"position along {info['label']} (m)")
     ax.set_ylabel("rank in the sorted order (index)")
     tests = find_pairs("sap", small, axis=d, bands=False)[1]
-    ax.set_title(f"36 balls on a grid, one band along {info['label']}: {tests} tests", fontsize=10)
+    ax.set_title(f"along {info['label']}: {tests} tests", fontsize=10)
+fig.suptitle("36 balls on a 2 m grid, swept in one band", fontsize=11)
 fig.tight_layout()
 save_figure(fig, OUT / "lattice_sweep.png", dpi=90)
 
