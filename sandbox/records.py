@@ -243,6 +243,24 @@ PROXY = np.dtype(
     align=True,
 )
 
+# one box in one band of sort and sweep (sap.gather), the bands one after the other, each in
+# sweep order: what the sweep reads of a box, in one record
+SWEEP_ENTRY = np.dtype(
+    [
+        ("lo", F8),  # the box's interval along the sweep direction (m)
+        ("hi", F8),
+        ("lo_across", F8),  # along the axis across the sweep (y for x and the slanted ones) (m)
+        ("hi_across", F8),
+        ("x0", F8),  # and along x, which a slanted sweep tests too (m)
+        ("x1", F8),
+        ("shape", I8),
+        ("body", I8),
+        ("fixed", I8),  # its broadphase flags (PROXY["fixed"])
+        ("first", I8),  # the first band the box crosses
+    ],
+    align=True,
+)
+
 # everything a compiled stage reads about the step, and what it reports back
 CONTEXT = np.dtype(
     [

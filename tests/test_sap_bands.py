@@ -89,7 +89,8 @@ def test_small_and_slanted_sweeps_keep_one_band():
     assert describe("sap", aabb, axis=0)["across"] == -1
     aabb = pile(20, 20)
     assert describe("sap", aabb, axis=2)["across"] == -1
-    pairs, tests = find_pairs("sap", aabb, axis=2)
+    pairs, tests, tested = find_pairs_traced("sap", aabb, record=True, axis=2)
+    assert len(tested) == tests and np.array_equal(pairs, reference(aabb))
     assert (pairs.tolist(), tests) == tuple(
         x.tolist() if isinstance(x, np.ndarray) else x
         for x in find_pairs("sap", aabb, axis=2, bands=False)
@@ -109,6 +110,14 @@ def test_outliers_and_boxes_that_are_not_finite():
             pairs, _ = find_pairs("sap", world, axis=axis)
             found = {tuple(p) for p in pairs.tolist()}
             assert {tuple(p) for p in reference(aabb).tolist()} <= found
+    # a box infinite across the sweep: the span is not finite, so one band, and the box
+    # meets every box whose x interval overlaps its own
+    world = np.concatenate([aabb, [[0.0, -np.inf, 1.0, np.inf]]])
+    assert describe("sap", world, axis=0)["across"] == -1
+    pairs, _ = find_pairs("sap", world, axis=0)
+    tall = len(aabb)
+    crossing = np.flatnonzero((aabb[:, 0] <= 1.0) & (aabb[:, 2] >= 0.0))
+    assert pairs[pairs[:, 1] == tall, 0].tolist() == crossing.tolist()
 
 
 def test_the_step_sweeps_in_bands():

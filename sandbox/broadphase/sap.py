@@ -21,14 +21,15 @@ square grid falls from about 15,000 to about 900.
 Swept along x alone, a box is tested against every box whose x interval overlaps its own: a
 strip one box wide across the whole world, however tall. A pile of m discs holds about
 sqrt(m) of them in such a strip, and the tests grow as m^1.5 (the rain of 5,000 discs at rest:
-337,876 tests for 14,884 overlapping pairs). So the boxes are also cut into bands across the
+337,864 tests for 14,896 overlapping pairs). So the boxes are also cut into bands across the
 sweep (:func:`band_layout`: along x, horizontal bands twice as tall as the mean box,
 :data:`BAND_SPAN`), a box goes into every band it crosses, and each band is swept on its own.
 Two overlapping boxes are tested in one band only, the band where their overlap begins (the
-later of their first bands), so no pair is tested twice. The same pile then takes 34,188 tests,
-and the sweep 190 us instead of 868. Bands also undo the lattice's shared ``lo``: a row of
-balls far apart along x falls in one band but is swept along x there (1,000 balls on a 10 m
-grid: no test at all, against 875 along the best turned direction). So the step chooses
+later of their first bands), so no pair is tested twice. The same pile then takes 30,970 tests
+(34,360 candidates visited), and the sweep's loop 128 us instead of 869 (209 us with the
+copies into bands and the kept order brought up to date). Bands also undo the lattice's
+shared ``lo``: a row of balls far apart along x falls in one band but is swept along x there
+(1,000 balls on a 10 m grid: no test at all, against 875 along the best turned direction). So the step chooses
 between x and y only, by their candidates counted band by band; the turned directions remain
 for the sweep in one band (``bands=False``), as the broadphase lesson compares them.
 
@@ -45,8 +46,8 @@ import math
 import numpy as np
 
 from sandbox.broadphase.aabb import put_pair, sort_pairs
-from sandbox.jit import njit
-from sandbox.records import PROXY
+from sandbox.jit import literally, njit
+from sandbox.records import PROXY, SWEEP_ENTRY
 from sandbox.sorting import argsort, sort_in_place
 
 SLANT = 0.15  # rad: the turn of the two slanted sweep directions
@@ -65,8 +66,9 @@ RECOUNT = 30  # steps between two choices of the direction (half a second at 60 
 # 32,020 along y), so a slanted direction is chosen only when it saves more than that
 SLANTED_COST = 4.0 / 3.0
 # a band across the sweep is this many times the boxes' mean extent across it. Measured on the
-# rain of 5,000 discs at rest, swept along x: 1.5 gives 31,624 tests, 2 gives 34,188, 3 gives
-# 41,396 and 4 gives 48,052 (each box in 1.7, 1.5, 1.3 and 1.25 bands); 1.5 and 2 take 190 us
+# rain of 5,000 discs at rest, swept along x: 1.5 visits 31,624 candidates, 2 visits 34,188,
+# 3 visits 41,396 and 4 visits 48,052 (each box in 1.7, 1.5, 1.3 and 1.25 bands); 1.5 and 2
+# took as long (a first version of the loop, 190 us)
 BAND_SPAN = 2.0
 MAX_BANDS = 1024  # a far outlier makes the bands no finer than the span of the world / this
 ONE_BAND = (0.0, 0.0, 1)  # the layout of a sweep in one band (band_layout)
@@ -170,10 +172,14 @@ def band_of(y: float, layout) -> int:
     """The band holding ``y`` (m), ``layout`` from :func:`band_layout`: the first and last
     bands take what lies beyond them, and a value that is not a number falls in the first."""
     y0, per, count = layout
-    t = (y - y0) * per
-    if not t >= 1.0:
+    if count == 1:
         return 0
-    return min(count - 1, int(t))
+    t = (y - y0) * per
+    if not t >= 1.0:  # below the second band, or not a number
+        return 0
+    if t >= count:  # beyond the last band, or infinite (which int() would not survive)
+        return count - 1
+    return int(t)
 
 
 @njit
@@ -197,16 +203,15 @@ def gather(proxies, d: int, layout):
     """The boxes band by band (``layout`` from :func:`band_layout`), each band in sweep order
     (the kept ``proxies["order"]``): a box goes into every band it crosses.
 
-    Returns ``(starts, box, ends, ids)``: band ``b`` holds entries ``starts[b]`` to
-    ``starts[b + 1]``; entry e has its box ``box[e]`` = [xmin, ymin, xmax, ymax], its interval
-    along ``d`` ``ends[e]`` = [lo, hi], and ``ids[e]`` = [shape, body, fixed flags, the first
-    band of its box]. The sweep then reads memory front to back instead of jumping around
-    (several times faster for thousands of shapes)."""
+    Returns ``(starts, entries)``: band ``b`` holds ``entries[starts[b]:starts[b + 1]]``,
+    SWEEP_ENTRY records (each box's interval along ``d``, the box, its shape, body, fixed
+    flags and first band). The sweep then reads memory front to back, one record a box,
+    instead of jumping around (several times faster for thousands of shapes; a record read
+    against three arrays: 124 against 177 us on the rain of 5,000 at rest)."""
     m, count = proxies.shape[0], layout[2]
     o = 1 if d >= 2 else 1 - d
     starts = band_starts(proxies, d, layout)
-    n = starts[count]
-    box, ends, ids = np.empty((n, 4)), np.empty((n, 2)), np.empty((n, 4), dtype=np.int64)
+    entries = np.empty(starts[count], dtype=SWEEP_ENTRY)
     fill = starts[:count].copy()
     for s in range(m):
         i = proxies[s]["order"]
@@ -214,19 +219,22 @@ def gather(proxies, d: int, layout):
         a = p["aabb"]
         first = band_of(a[o], layout)
         for b in range(first, band_of(a[o + 2], layout) + 1):
-            e = fill[b]
+            e = entries[fill[b]]
             fill[b] += 1
-            box[e, 0], box[e, 1], box[e, 2], box[e, 3] = a[0], a[1], a[2], a[3]
-            ends[e, 0], ends[e, 1] = interval(a, d)
-            ids[e, 0], ids[e, 1], ids[e, 2], ids[e, 3] = i, p["body"], p["fixed"], first
-    return starts, box, ends, ids
+            e["lo"], e["hi"] = interval(a, d)
+            e["lo_across"], e["hi_across"], e["x0"], e["x1"] = a[o], a[o + 2], a[0], a[2]
+            e["shape"], e["body"], e["fixed"], e["first"] = i, p["body"], p["fixed"], first
+    return starts, entries
 
 
 @njit
-def sap_kernel(entries, d: int, buf, tested):
+def sap_kernel(bands, d: int, buf, tested, slanted: bool, record: bool):
     """``(k pairs, pair_tests)`` sweeping along direction ``d`` over the bands of
-    :func:`gather` (``entries``); the pairs are written to ``buf`` as far as they fit, and the
-    pairs tested to ``tested`` (as far as they fit: give it no rows to record none).
+    :func:`gather` (``bands`` = (starts, entries)); the pairs are written to ``buf`` as far as
+    they fit, and with ``record`` the pairs tested to ``tested`` (as far as they fit).
+    ``slanted`` must be ``d >= 2``; it and ``record`` are compiled in (``literally``: a version
+    for each value), so that the plain sweep's loop carries neither test (the rain of 5,000 at
+    rest in one band: 1,221 us with both tests in the loop, 916 without).
 
     In each band, box ``e`` is tested against the boxes after it until one starts beyond its
     upper end. Two boxes that overlap share the band of their overlap's lower edge, the later
@@ -237,32 +245,33 @@ def sap_kernel(entries, d: int, buf, tested):
     random, so the processor would guess it wrong half the time): every candidate is written
     at the end of the pair list, which then grows by 1 or 0.
     """
-    starts, box, ends, ids = entries
+    literally(slanted)
+    literally(record)
+    starts, entries = bands
     k = 0
     tests = 0
-    nb, nt = buf.shape[0], tested.shape[0]
-    slanted = d >= 2
-    other = 1 if slanted else 1 - d  # the axis whose overlap the sweep leaves to the test
+    nb = buf.shape[0]
     for band in range(starts.shape[0] - 1):
         end = starts[band + 1]
         for e in range(starts[band], end):
-            hi, x0, x1 = ends[e, 1], box[e, 0], box[e, 2]
-            lo_o, hi_o = box[e, other], box[e, other + 2]
-            i, body_i, fixed_i, first_i = ids[e, 0], ids[e, 1], ids[e, 2], ids[e, 3]
+            p = entries[e]
+            hi, x0, x1, lo_o, hi_o = p["hi"], p["x0"], p["x1"], p["lo_across"], p["hi_across"]
+            i, body_i, fixed_i, first_i = p["shape"], p["body"], p["fixed"], p["first"]
             first = k
             for r in range(e + 1, end):
-                if ends[r, 0] > hi:
+                q = entries[r]
+                if q["lo"] > hi:
                     break  # sorted by lo: nothing further along can reach box e
                 # not one body, not both fixed (aabb.skip_pair), met in this band: one test
-                here = max(first_i, ids[r, 3]) == band
-                test = (ids[r, 1] != body_i) & ((fixed_i & ids[r, 2]) == 0) & here
-                hit = test & (box[r, other] <= hi_o) & (lo_o <= box[r, other + 2])
+                here = max(first_i, q["first"]) == band
+                test = (q["body"] != body_i) & ((fixed_i & q["fixed"]) == 0) & here
+                hit = test & (q["lo_across"] <= hi_o) & (lo_o <= q["hi_across"])
                 if slanted:  # and x too
-                    hit &= (box[r, 0] <= x1) & (x0 <= box[r, 2])
+                    hit &= (q["x0"] <= x1) & (x0 <= q["x1"])
                 if k < nb:
-                    buf[k, 1] = ids[r, 0]
-                if test and tests < nt:
-                    put_pair(tested, tests, i, ids[r, 0])
+                    buf[k, 1] = q["shape"]
+                if record and test:
+                    put_pair(tested, tests, i, q["shape"])
                 k += hit
                 tests += test
             for q in range(first, min(k, nb)):  # the pairs (i, j) of box e, with i < j
@@ -320,9 +329,25 @@ def sweep(proxies, kept: int, recount: int, buf):
     :func:`sap_kernel`)."""
     d, recount = choose_direction(proxies, kept, recount)
     update_order(proxies, d, kept)
-    entries = gather(proxies, d, band_layout(proxies, d))
-    k, tests = sap_kernel(entries, d, buf, np.empty((0, 2), dtype=np.int64))
+    bands = gather(proxies, d, band_layout(proxies, d))
+    none = np.empty((0, 2), dtype=np.int64)
+    if d >= 2:  # only a direction kept from a sweep in one band (choose_direction)
+        k, tests = sap_kernel(bands, d, buf, none, True, False)
+    else:
+        k, tests = sap_kernel(bands, d, buf, none, False, False)
     return d, recount, k, tests
+
+
+@njit
+def sweep_bands(bands, d: int, buf, tested, record: bool) -> tuple[int, int]:
+    """:func:`sap_kernel` with its compiled-in choices made at run time (for :func:`find`)."""
+    if d >= 2:
+        if record:
+            return sap_kernel(bands, d, buf, tested, True, True)
+        return sap_kernel(bands, d, buf, tested, True, False)
+    if record:
+        return sap_kernel(bands, d, buf, tested, False, True)
+    return sap_kernel(bands, d, buf, tested, False, False)
 
 
 def proxies_of(aabb: np.ndarray, static: np.ndarray, body: np.ndarray) -> np.ndarray:
@@ -348,14 +373,14 @@ def find(
     d = _direction(proxies, axis, bands)
     m = len(aabb)
     update_order(proxies, d, -1)
-    entries = gather(proxies, d, band_layout(proxies, d) if bands else ONE_BAND)
+    swept = gather(proxies, d, band_layout(proxies, d) if bands else ONE_BAND)
     buf = np.empty((4 * m + 64, 2), dtype=np.int64)
     tested = np.empty((0, 2), dtype=np.int64)
-    k, tests = sap_kernel(entries, d, buf, tested)
+    k, tests = sweep_bands(swept, d, buf, tested, False)
     if k > len(buf) or record:
         buf = np.empty((k, 2), dtype=np.int64)
         tested = np.empty((tests if record else 0, 2), dtype=np.int64)
-        k, tests = sap_kernel(entries, d, buf, tested)
+        k, tests = sweep_bands(swept, d, buf, tested, record)
     return sort_pairs(buf, k, m), int(tests), tested
 
 
