@@ -238,7 +238,7 @@ PROXY = np.dtype(
         ("body", I8),  # shape k's body
         ("fixed", I8),  # bit flags, pairs sharing a bit are left out (step.place_proxies)
         ("lo", F8),  # the lower end of shape k's box along the sweep direction (m)
-        ("order", I8),  # the shape at place k of the sorted sweep
+        ("order", I8),  # the shape at place k of the sorted sweep (always a permutation)
     ],
     align=True,
 )

@@ -295,7 +295,10 @@ def test_sap_counts_the_candidates_of_every_direction():
         assert pairs.tolist() == expected  # the same pairs whatever the direction
         pairs, tests = find_pairs("sap", aabb, axis=d)
         visits = candidates(proxies, d, band_layout(proxies, d))
-        assert tests <= visits < 1.5 * tests if d < 2 else tests == visits
+        if d < 2:  # cut into bands: a few pairs share two
+            assert tests <= visits < 1.5 * tests
+        else:  # a slanted sweep is not cut
+            assert tests == visits
         assert pairs.tolist() == expected
 
 

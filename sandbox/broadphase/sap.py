@@ -29,9 +29,10 @@ later of their first bands), so no pair is tested twice. The same pile then take
 (34,360 candidates visited), and the sweep's loop 128 us instead of 869 (209 us with the
 copies into bands and the kept order brought up to date). Bands also undo the lattice's
 shared ``lo``: a row of balls far apart along x falls in one band but is swept along x there
-(1,000 balls on a 10 m grid: no test at all, against 875 along the best turned direction). So the step chooses
-between x and y only, by their candidates counted band by band; the turned directions remain
-for the sweep in one band (``bands=False``), as the broadphase lesson compares them.
+(1,000 balls on a 10 m grid: no test at all, against 875 along the best turned direction). So
+the step chooses between x and y only, by their candidates counted band by band; the turned
+directions remain for the sweep in one band (``bands=False``), as the broadphase lesson
+compares them.
 
 The world's step keeps the order from one step to the next (:func:`update_order`): bodies move
 little in a step, so an insertion sort of last step's order takes about O(m) (incremental sort
@@ -96,16 +97,8 @@ def candidates(proxies, d: int, layout) -> int:
     a band's count is the sum of those numbers less 1 + 2 + ... + n; with both ends sorted,
     one walk along them finds all the numbers. A pair that shares two bands is counted in
     both, as the sweep visits it in both (and tests it in one)."""
-    starts = band_starts(proxies, d, layout)
-    n = starts[-1]
-    lo, hi = np.empty(n), np.empty(n)
-    fill = starts[:-1].copy()
-    o = 1 if d >= 2 else 1 - d
-    for i in range(proxies.shape[0]):
-        a = proxies[i]["aabb"]
-        for b in range(band_of(a[o], layout), band_of(a[o + 2], layout) + 1):
-            lo[fill[b]], hi[fill[b]] = interval(a, d)
-            fill[b] += 1
+    starts, entries = gather(proxies, d, layout)  # any kept order: each band is sorted here
+    lo, hi = entries["lo"].copy(), entries["hi"].copy()
     total = 0
     for b in range(starts.shape[0] - 1):
         s0, s1 = starts[b], starts[b + 1]
@@ -183,19 +176,23 @@ def band_of(y: float, layout) -> int:
 
 
 @njit
-def band_starts(proxies, d: int, layout):
-    """Where each band's entries start (``count + 1``, the last the number of entries): a box
-    is entered in every band it crosses (``layout`` from :func:`band_layout`)."""
+def band_spans(proxies, d: int, layout):
+    """``(starts, spans)``: each shape's first and last band ``spans`` (m, 2) (``layout`` from
+    :func:`band_layout`), and where each band's entries start (``count + 1``, the last the
+    number of entries), a box entered in every band it crosses."""
     o = 1 if d >= 2 else 1 - d
     count = layout[2]
     starts = np.zeros(count + 1, dtype=np.int64)
+    spans = np.empty((proxies.shape[0], 2), dtype=np.int64)
     for s in range(proxies.shape[0]):
         a = proxies[s]["aabb"]
-        for b in range(band_of(a[o], layout), band_of(a[o + 2], layout) + 1):
+        first, last = band_of(a[o], layout), band_of(a[o + 2], layout)
+        spans[s, 0], spans[s, 1] = first, last
+        for b in range(first, last + 1):
             starts[b + 1] += 1
     for b in range(count):
         starts[b + 1] += starts[b]
-    return starts
+    return starts, spans
 
 
 @njit
@@ -210,15 +207,15 @@ def gather(proxies, d: int, layout):
     against three arrays: 124 against 177 us on the rain of 5,000 at rest)."""
     m, count = proxies.shape[0], layout[2]
     o = 1 if d >= 2 else 1 - d
-    starts = band_starts(proxies, d, layout)
+    starts, spans = band_spans(proxies, d, layout)
     entries = np.empty(starts[count], dtype=SWEEP_ENTRY)
     fill = starts[:count].copy()
     for s in range(m):
         i = proxies[s]["order"]
         p = proxies[i]
         a = p["aabb"]
-        first = band_of(a[o], layout)
-        for b in range(first, band_of(a[o + 2], layout) + 1):
+        first = spans[i, 0]
+        for b in range(first, spans[i, 1] + 1):
             e = entries[fill[b]]
             fill[b] += 1
             e["lo"], e["hi"] = interval(a, d)
@@ -354,6 +351,7 @@ def proxies_of(aabb: np.ndarray, static: np.ndarray, body: np.ndarray) -> np.nda
     """PROXY records for plain arrays: boxes (m, 4), a fixed flag and a body per shape."""
     proxies = np.zeros(len(aabb), dtype=PROXY)
     proxies["aabb"], proxies["fixed"], proxies["body"] = aabb, static, body
+    proxies["order"] = np.arange(len(aabb))  # a sweep order from the start, if not a sorted one
     return proxies
 
 
