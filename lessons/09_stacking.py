@@ -476,7 +476,7 @@ for it in (4, 8, 32):
 #
 # Each sweep carries the weight one contact further and warm starting keeps last step's
 # progress, so the error left shrinks roughly in proportion to the number of sweeps: about half
-# with twice as many. The table gives 3.33 cm, 1.55 cm (x 0.47) and 0.28 cm at 32 (x 0.08 for 8
+# with twice as many. The table gives 3.24 cm, 1.55 cm (x 0.48) and 0.28 cm at 32 (x 0.09 for 8
 # times the sweeps).
 #
 # </details>
@@ -501,7 +501,7 @@ print(f"two boxes, pairwise: the top box dropped {y0_e2 - top_e2.position[1]:.3f
 # No. Even with one box on another, the contact between the two boxes pushes the lower box back
 # into the ground after the ground contact was handled, every step; the penetration fix pushes
 # the pair out again, slightly unevenly at the two corners, and the error builds up until the top
-# box slides off: after 5 s it has dropped 1.006 m (a box height: it is on the ground) and lies
+# box slides off: after 5 s it has dropped 1.008 m (a box height: it is on the ground) and lies
 # turned by 90 degrees. Handling contacts one at a time cannot hold even the smallest stack.
 #
 # </details>
@@ -520,7 +520,7 @@ for name in ("default (all on)", "position_correction off"):
 #
 # The position pass only pushes apart overlaps deeper than the slop, 5 mm. The iterative solver
 # keeps the stack's deepest overlap near it: 5.47 mm without the pass, so the pass has a
-# fraction of a millimetre to do, and with it the deepest overlap is 5.21 mm. The top box drops
+# fraction of a millimetre to do, and with it the deepest overlap is 5.36 mm. The top box drops
 # 12.12 mm either way. (Before the sweeps visited the contacts colour by colour, in another
 # order, the deepest overlap stayed at 3.81 mm and the pass never acted at all: the order of
 # the visits changes where within the slop a stack comes to rest, not whether it stands.)

@@ -315,13 +315,13 @@ save_figure(fig, OUT / "sag_and_stretch.png", dpi=100)
 
 # %% [markdown]
 # Both solvers' errors grow with the size of the problem. The iterative solver's sag grows
-# faster than the height, about as its square: 0.79, 7.0, 32 and 178 mm for bases 5, 10, 20 and
+# faster than the height, about as its square: 0.79, 7.0, 32 and 179 mm for bases 5, 10, 20 and
 # 40 (more rows, each carrying more weight, with the same 10 sweeps). Its chain stretch grows
 # about in proportion to the length: 5.0, 8.4, 17.9 and 31.7 mm for 5 to 40 links.
 #
 # With its defaults the soft step does no better on the small pyramids: it sags more on them
 # (2.0 against 0.79 mm at base 5, 7.6 against 7.0 at base 10), about as much at base 20 (30
-# against 32 mm) and less at base 40 (124 against 178 mm). Its sag is the static
+# against 32 mm) and less at base 40 (124 against 179 mm). Its sag is the static
 # error of its springs (section 2), added up along the load path: every row of boxes is a row
 # of springs squeezed by the weight above it, which grows with the row's depth, so the top box
 # drops about four times as far each time the base doubles (2.0, 7.6, 30, 124 mm), as the
@@ -913,11 +913,11 @@ for name, view in views.items():
 # What the runs show (this engine's solvers at 10 iterations, pymunk at 10):
 #
 # - **pyramid of 40**: pairwise collapses (the top box is 19 m down after 2 s); shock
-#   propagation holds it (its top box even rose 15 mm in 2 s); iterative sags 17.8 cm and
-#   still creeps (from 175 to 180 mm over the last 5 s); pymunk 23.7 cm after 3 s, still
+#   propagation holds it (its top box even rose 15 mm in 2 s); iterative sags 17.9 cm and
+#   still creeps (from 173 to 180 mm over the last 5 s); pymunk 23.7 cm after 3 s, still
 #   sinking. The soft step sags 12.4 cm, less than the iterative solver, and stays there
-#   (between 124.0 and 124.2 mm over the last 5 s); its top box moved 3.5 cm sideways in 10 s,
-#   all of it while the pyramid settled (section 6), where the iterative one moved 4.5 cm. In the
+#   (between 124.3 and 124.7 mm over the last 5 s); its top box moved 3.3 cm sideways in 10 s,
+#   nearly all of it while the pyramid settled (section 6), where the iterative one moved 5.8 cm. In the
 #   animation the soft and iterative pyramids lie almost on top of each other.
 # - **chain**: soft under 0.01 mm, iterative and shock 17.9 mm (shock propagation only
 #   changes how contacts are solved: for joints it is the iterative solver, its line lies
@@ -966,11 +966,11 @@ print_table(["pyramid of 40", "lowest top drop, 1-2 s (mm)", "highest top drop, 
              "top box moved sideways at 2 s (mm)", "ms per step"], rows, 2)  # fmt: skip
 
 # %% [markdown]
-# With the defaults the top box is between 122.3 and 124.3 mm down from 1 s to 2 s, still
-# settling (it ends between 124.0 and 124.2 mm, section 5), and it moved 33 mm sideways by 2 s,
-# while it settled; by 10 s it had crept on to 35 mm (0.28 mm/s). With 8 substeps it is at
+# With the defaults the top box is between 122.8 and 124.7 mm down from 1 s to 2 s, still
+# settling (it ends between 124.3 and 124.7 mm, section 5), and it moved 32 mm sideways by 2 s,
+# while it settled; by 10 s it had crept on to 33 mm (0.22 mm/s). With 8 substeps it is at
 # rest within a second, 30.2 mm down (to 0.06 mm from 1 s to 2 s): a quarter of the defaults'
-# 124 mm, as $1/f^2$ predicts, and less than a fifth of the iterative solver's 178 mm. Its top
+# 124 mm, as $1/f^2$ predicts, and less than a fifth of the iterative solver's 179 mm. Its top
 # box moved 12 mm sideways. The price is more time per step (the table).
 #
 # The last row goes the other way, and past Box2D: `hold_ratio` 0.5 lets every box hold still the
@@ -1282,11 +1282,11 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 #   below, and nothing moves sideways; the light box carries its own weight into the ground,
 #   the heavy box rests on it as on the ground;
 # - **soft, hold off** (`hold_ratio` 0, Box2D's soft step): from 1 s to 7 s the heavy box
-#   sits 65 to 69 mm deep in the light one (the left plot) and the light box about as deep in
+#   sits 64 to 67 mm deep in the light one (the left plot) and the light box about as deep in
 #   the ground, while the light box is worked out sideways, slowly at first and then faster,
-#   the heavy box tilting over it, until it is out from under at 8.65 s (the table's worst
+#   the heavy box tilting over it, until it is out from under at 8.62 s (the table's worst
 #   values come from the landing in the first half second, 84 mm into the ground, and from
-#   after 8.65 s, when both boxes tip over);
+#   after 8.62 s, when both boxes tip over);
 # - **with 8 substeps** it stays under; the light box sinks 20 mm into the ground and the
 #   heavy one 22 mm into it (the issue's bound is 2 cm);
 # - **and with the position pass off** it stays under too, but the heavy box ends 136 mm deep in
@@ -1310,7 +1310,7 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # - **the soft step wins** on long chains (under 0.01 mm against 17.9 mm) and on heavy loads on
 #   chains (0.11 mm where the iterative chain comes apart): its joints are 120 Hz springs,
 #   solved together, velocities and positions. It also wins on the tall pyramid with the
-#   defaults (124 against 178 mm at base 40, at rest where the iterative one still creeps), and
+#   defaults (124 against 179 mm at base 40, at rest where the iterative one still creeps), and
 #   on the 400:1 boxes (0.1 mm each against the iterative solver's 5 mm slop), where it holds
 #   the light box still as shock propagation does;
 # - **it ties** on the pyramid of base 20 with the defaults, where its contacts are capped at

@@ -316,8 +316,10 @@ def fix_positions(
     ``position_iterations`` passes of the penetration fix, each followed by the joints'
     position pass (swept, or solved together with ``joints_together``, as the soft step does
     where its plan solves the relax pass together:
-    :func:`sandbox.joints.positions_together.solve_joint_positions_together`); then each
-    body's orientation turned by what the passes turned. Nothing at all when
+    :func:`sandbox.joints.positions_together.solve_joint_positions_together`), until a pass
+    finds no point overlapping more than ``position_tolerance`` (and the joints within the
+    slop; Box2D 2.x's test: a resting pile takes one pass, a deep overlap all of them); then
+    each body's orientation turned by what the passes turned. Nothing at all when
     ``settings.position_correction`` is off. Returns the smallest separation the last contact
     pass saw (m, < 0 overlapping)."""
     ctx = context[0]
@@ -350,15 +352,18 @@ def fix_positions(
         else:
             weighted = method == MASS_WEIGHTED
             worst, moved = push_apart(contacts, k, bodies, weighted, bounds, layering), True
+        # Box2D's stop: no point overlaps more than position_tolerance (three slops); or
+        # nothing moved, and another pass would see the very same separations
+        settled = worst >= -ctx["position_tolerance"]
         if joints.shape[0] == 0:
-            if not moved:
-                break  # nothing moved: another pass would see the very same separations
+            if settled or not moved:
+                break
             continue
         if joints_together:
             joint_error = solve_joint_positions_together(joints, bodies)
         else:
             joint_error = solve_joint_positions(joints, bodies)
-        if worst >= -3.0 * slop and joint_error <= slop:
+        if settled and joint_error <= slop:
             break
     turn_bodies(bodies, rot, ctx["orientation"], ctx["renormalise"])
     return worst

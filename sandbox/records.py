@@ -282,6 +282,7 @@ CONTEXT = np.dtype(
         ("hold_heavier", np.bool_),  # ... also in layers when a body rests on a much lighter one
         ("deep_overlap", F8),  # m: overlap at a step's start beyond which the push is bounded
         ("slop", F8),
+        ("position_tolerance", F8),  # m: the position passes stop once no overlap is deeper
         ("baumgarte", F8),
         ("restitution_threshold", F8),
         ("contact_margin", F8),  # the setting, or |g| dt^2 when larger (m)

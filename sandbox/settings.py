@@ -124,6 +124,14 @@ class Settings:
     position_iterations: int = _setting(
         3, "integer", "passes of the position-level overlap fix per step", Range(0, 1000)
     )
+    position_tolerance: float = _setting(
+        0.015,
+        "number",
+        "the position passes stop once no point overlaps more than this (Box2D's three slops; "
+        "0: every pass runs while anything overlaps beyond the slop)",
+        Range(0.0, 1.0, "m"),
+        ge=0.0,
+    )
     slop: float = _setting(
         0.005,
         "number",

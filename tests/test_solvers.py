@@ -330,6 +330,35 @@ def test_impulse_option_passes_remove_the_overlap():
     assert -1e-4 < correct(w, m, 20) <= 0.0
 
 
+def ball_sunk_in_ground(depth: float, **settings) -> tuple[World, Body]:
+    """A ball (r = 0.5 m) sunk ``depth`` (m) into a static box, no gravity, classic passes."""
+    w = World(gravity=(0.0, 0.0), dt=1.0 / 60.0, robust_positions=False, **settings)
+    ground = w.add_body(Body(name="ground", type="static", position=(0.0, -0.5)))
+    ground.add_shape(Box(10.0, 1.0))
+    ball = w.add_body(Body(name="ball", position=(0.0, 0.5 - depth)))
+    ball.add_shape(Circle(0.5))
+    return w, ball
+
+
+@pytest.mark.parametrize("tolerance", [0.0, 0.015, 0.03])
+def test_position_passes_stop_once_no_overlap_exceeds_the_tolerance(tolerance):
+    # a ball on a plane is linear in its height: each pass leaves exactly 1 - beta = 0.8 of the
+    # overlap beyond the slop, so a step leaves 0.8^3 while the overlap the step starts its
+    # passes with is deeper than position_tolerance (all 3 passes), and 0.8 once it is within
+    # it (one pass, Box2D's stop); tolerance 0 runs every pass down to the slop
+    w, ball = ball_sunk_in_ground(0.1, position_tolerance=tolerance)
+    slop, depths = w.settings.slop, [0.1]
+    for _ in range(14):
+        w.step()
+        depths.append(0.5 - ball.position[1])
+    for before, after in zip(depths[:-1], depths[1:], strict=True):
+        # the passes start from where the last step left it (no velocity, no gravity)
+        passes = 3 if before > tolerance else 1
+        assert after - slop == pytest.approx((before - slop) * 0.8**passes, rel=1e-9)
+    assert np.all(np.diff(depths) < 0.0) and depths[-1] > slop
+    assert tuple(ball.velocity) == (0.0, 0.0)
+
+
 # --- shock propagation layers -----------------------------------------------------------------
 def test_contact_layers_count_contacts_from_the_fixed_bodies():
     # ground 0; 1 and 2 on the ground; 3 on 1; 4 on 3 and 2; 5 floating alone with 6
