@@ -79,8 +79,9 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float, bounds, 
     velocity sweeps' order (:func:`sandbox.solvers.wide_positions.plan`); ``bounds`` = (slop,
     push) (m), as :func:`allowed_separation`."""
     if not layered:
-        order, lanes = plan(contacts, k, bodies, bounds, wide)
-        return (order, np.zeros(bodies.shape[0], dtype=np.int64)), lanes
+        order, lanes, owners, starts, alone = plan(contacts, k, bodies, bounds, wide)
+        layering = order, np.zeros(bodies.shape[0], dtype=np.int64)
+        return layering, (lanes, owners, starts, alone)
     layer = contact_layers(contacts, k, bodies, gap)
     n = bodies.shape[0]
     key = np.empty(k, dtype=np.int64)
@@ -282,9 +283,8 @@ def wide_position_impulses(contacts, bodies, beta: float, bounds, layering, lane
     if len(starts) > 1:
         poses = np.zeros((len(bodies) + 1, 5))
         take_poses(bodies, poses)
-        for c in range(0, len(starts) - 1, 2):  # two-point blocks, then discs' (by_points)
-            blocks = (starts[c], starts[c + 1], starts[c + 2])
-            w, m = visit_colour(lanes, owners, blocks, poses, beta)
+        for c in range(len(starts) - 1):
+            w, m = visit_colour(lanes, owners, starts[c], starts[c + 1], poses, beta)
             worst, moved = min(worst, w), moved | m
         put_poses(poses, bodies)
     w, m = position_impulses(contacts, len(alone), bodies, beta, bounds, layering)

@@ -1,25 +1,18 @@
 """The wide position passes (sandbox.solvers.wide_positions): the penetration fix's position
 impulses, eight contacts at a time, give bit for bit what the record pass gives in the same
-order (colour by colour, each colour's two-point contacts and then its discs, then the
-contacts no colour could take)."""
+order (colour by colour, then the contacts no colour could take)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_wide_sweeps import CASES, instructions, scenes, settled
+from test_wide_sweeps import CASES, instructions
 
 from sandbox.penetration import position_impulses, position_order, wide_position_impulses
 from sandbox.records import CONTACT
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.wide import COLOURS, colour
-from sandbox.solvers.wide_positions import MIN_DISC_LANES
 
-# and a world with enough disc contacts for the discs' own position lanes (MIN_DISC_LANES)
-CASES = {
-    **CASES,
-    "rain of 1,000 discs (2,400 contacts: discs in lanes)": lambda: settled(scenes.rain(1000), 150),
-}
 BOUNDS = (0.005, np.inf)  # slop (m), and no bound on the push (robust_positions off)
 BETA = 0.2
 GAP = 0.02  # m: contacts closer than this touch (only used by layered passes)
@@ -62,23 +55,14 @@ def test_the_order_is_colour_by_colour_then_the_rest_interleaved(case):
     )
     assert sorted(order) == list(range(k))
     colours = np.empty(k, dtype=np.int64)
-    count = colour(contacts, k, bodies, colours, True, k >= MIN_DISC_LANES)
-    assert len(starts) == 2 * count + 1  # each colour's two-point blocks, then its discs'
-    points = contacts["count"][:k]
-    coloured = [
-        i
-        for c in range(count)
-        for n in (2, 1)
-        for i in np.flatnonzero((colours == c) & (points == n))
-    ]
+    count = colour(contacts, k, bodies, colours, True)
+    assert len(starts) == count + 1
+    coloured = [i for c in range(count) for i in np.flatnonzero(colours == c)]
     rest = np.flatnonzero(colours == COLOURS)
     rest = [rest[visit(q, (len(rest) + 1) // 2)] for q in range(len(rest))]
     assert list(order) == coloured + rest
     assert list(alone) == list(np.flatnonzero(colours == COLOURS))
-    discs = np.count_nonzero(points == 1)
-    if k >= MIN_DISC_LANES and discs:  # discs are coloured too: most of them go in lanes
-        assert len(alone) < discs
-    elif discs == k:  # a small world of discs: the old order of the passes, unchanged
+    if not np.any(contacts["count"] == 2):  # discs: the old order of the passes, unchanged
         assert list(order) == [visit(q, (k + 1) // 2) for q in range(k)]
 
 
@@ -116,11 +100,10 @@ def test_empty_contact_list():
     assert wide_position_impulses(contacts, bodies, BETA, BOUNDS, layering, lanes) == (0.0, False)
 
 
-@pytest.mark.parametrize("points", [2, 1])
-def test_the_lane_loop_compiles_to_vector_instructions(points):
+def test_the_lane_loop_compiles_to_vector_instructions():
     from sandbox.solvers import wide_positions
 
-    args = (np.zeros(wide_positions.BLOCK), np.uint64(0), 0.2, points)
+    args = (np.zeros(wide_positions.BLOCK), np.uint64(0), 0.2)
     packed, single = instructions(
         wide_positions.visit_block, args, "mul|div|sqrt", error_model="numpy"
     )

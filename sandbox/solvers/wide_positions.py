@@ -3,16 +3,14 @@
 eight contacts at a time, as the velocity sweeps are (:mod:`sandbox.solvers.wide`).
 
 A position pass visits the contacts one after another and moves their bodies as it goes; any
-fixed order is a valid pass. The contacts are coloured as for the velocity sweeps, except
-that a body moves when its own inverse mass or moment is not zero (the passes push with the
-bodies' own masses: :func:`sandbox.penetration.position_masses`). A pass is then each
-colour's contacts, eight at a time (its two-point contacts, then its discs, whose blocks
-visit one point), then the others (no colour left) one by one in
-:func:`sandbox.solvers.iterative.visit` order. :func:`plan` lists that order, and the passes
-over the records follow it where the lanes do not run (uncompiled; the half and
-mass-weighted options), so every path gives the same numbers. Discs are coloured only from
-:data:`MIN_DISC_LANES` contacts on: a smaller world passes them one by one in the very same
-order as before the lanes.
+fixed order is a valid pass. The contacts with two points are coloured as for the velocity
+sweeps, except that a body moves when its own inverse mass or moment is not zero (the passes
+push with the bodies' own masses: :func:`sandbox.penetration.position_masses`). A pass is
+then each colour's contacts, eight at a time, then the others (one point, or no colour left)
+one by one in :func:`sandbox.solvers.iterative.visit` order. :func:`order` lists that order,
+and the passes over the records follow it where the lanes do not run (uncompiled; the half
+and mass-weighted options), so every path gives the same numbers. A world without two-point
+contacts (discs) is passed over in the very same order as before the lanes.
 
 Each point's push is :func:`sandbox.solvers.impulses.push_point`, the same function the
 record pass calls. Layout, as the velocity lanes': lane ``l`` of field ``F`` of the block
@@ -34,13 +32,9 @@ from sandbox.math2d import pose_of, set_pose
 from sandbox.solvers.impulses import push_point
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.soft import excess_depth
-from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, place
+from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, groups, place
 
 MEASURED = "one pass of 2,369 contacts: 23 us eight at a time against 70 us one by one"
-# discs go into lanes from this many contacts on; below, the colouring and packing cost more
-# than the lanes save (benchmarks/ab.py: rain of 100, 204 contacts, 1.028 of the time a step
-# with its discs in lanes; rain of 1,000, 2,400 contacts, 0.942)
-MIN_DISC_LANES = 1024
 
 IM_A, II_A, IM_B, II_B, NX, NY, *_rest = _offsets(19)
 AX, AY, AC, AS, ATURN, BX, BY, BC, BS, BTURN, WORST, MOVED, P0 = _rest  # poses: pose_of
@@ -67,21 +61,21 @@ def allowed_separation(c, p, slop: float, push: float) -> float:
 
 @njit
 def plan(contacts, k: int, bodies, bounds, wide: bool):
-    """The order of a pass and, when ``wide``, its lanes: ``(order, (lanes, owners, starts,
-    alone))``. ``order``: the contacts in lanes order (colour by colour: each colour's
-    two-point contacts, then its discs), then ``alone`` (the others) in
-    :func:`~sandbox.solvers.iterative.visit` order; when ``wide``, only the latter (the lanes
-    take the rest). ``owners`` and ``starts`` as :func:`sandbox.solvers.wide.place` (an empty
-    lane: contact -1, bodies the row of :func:`take_poses` no body uses); ``lanes`` packed
-    (:func:`pack`; ``bounds`` = (slop, push) (m), as :func:`allowed_separation`)."""
+    """The order of a pass and, when ``wide``, its lanes: ``(order, lanes, owners, starts,
+    alone)``. ``order``: the contacts in lanes order (colour by colour), then ``alone`` (the
+    others) in :func:`~sandbox.solvers.iterative.visit` order; when ``wide``, only the latter
+    (the lanes take the rest). ``owners`` and ``starts`` as
+    :func:`sandbox.solvers.wide.place` (an empty lane: contact -1, bodies the row of
+    :func:`take_poses` no body uses); ``lanes`` packed (:func:`pack`; ``bounds`` = (slop,
+    push) (m), as :func:`allowed_separation`)."""
     colours = np.empty(k, dtype=np.int64)
     ends = np.empty((4, k), dtype=np.int64)
-    count = colour(contacts, k, bodies, colours, True, k >= MIN_DISC_LANES, ends)
-    blocks = (k + LANES - 1) // LANES + 2 * count
+    count = colour(contacts, k, bodies, colours, True, False, ends)
+    blocks = (k + LANES - 1) // LANES + count
     owners = np.empty((3, blocks * LANES), dtype=np.int64)
-    starts = np.empty(2 * count + 1, dtype=np.int64)
+    starts = np.empty(count + 1, dtype=np.int64)
     blocks = place(
-        ends, k, by_points(ends, k, colours, count), 2 * count, owners, len(bodies), starts
+        ends, k, groups(ends, k, colours, count, 2, False), count, owners, len(bodies), starts
     )
     alone = np.nonzero(colours == COLOURS)[0]
     q = 0 if wide else k - len(alone)
@@ -98,19 +92,7 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
     lanes = np.empty(blocks * BLOCK if wide else 0)
     if wide:
         pack(contacts, bodies, lanes, owners, blocks, bounds)
-    return order, (lanes, owners, starts, alone)
-
-
-@njit
-def by_points(ends, k: int, colours, count: int):
-    """Each contact's group for :func:`sandbox.solvers.wide.place`: 2 c for one of colour c
-    with two points, 2 c + 1 for one with one point (its blocks visit one point:
-    :func:`visit_single_block`), 2 ``count`` for one left to the record pass."""
-    keys = np.empty(k, dtype=np.int64)
-    for i in range(k):
-        c = colours[i]
-        keys[i] = 2 * count if c >= count else 2 * c + (1 if ends[0, i] == 1 else 0)
-    return keys
+    return order, lanes, owners, starts, alone
 
 
 @njit
@@ -130,15 +112,13 @@ def pack(contacts, bodies, lanes, owners, blocks: int, bounds) -> None:
         lanes[i + IM_A], lanes[i + II_A] = a["inv_mass"], a["inv_moment"]
         lanes[i + IM_B], lanes[i + II_B] = b["inv_mass"], b["inv_moment"]
         lanes[i + NX], lanes[i + NY] = c["normal"][0], c["normal"][1]
-        # each point written out (a disc's lane has one): a loop over the two
+        # both points used (only those get a colour), each written out: a loop over the two
         # took half as long again
         p, base = c["points"][0], i + P0
         lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
         lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
         lanes[base + DEPTH] = p["depth"]
         lanes[base + ALLOWED] = allowed_separation(c, p, slop, push)
-        if c["count"] == 1:
-            continue  # a disc's lane: its blocks read the first point only
         p, base = c["points"][1], i + P1
         lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
         lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
@@ -147,49 +127,45 @@ def pack(contacts, bodies, lanes, owners, blocks: int, bounds) -> None:
 
 
 @njit(error_model="numpy")  # a division by k = 0 (an empty lane) gives a number left unused
-def visit_block(lanes, start, beta: float, points: int) -> None:
-    """One push of each point of the block's contacts (``start``: the block's first number;
-    ``points``: 2, or 1 for a disc's block), the first point and then the second, as the
-    record pass does. As :func:`sandbox.solvers.wide.visit_block`, the loop reads and writes
-    ``lanes`` itself, so it runs as vector instructions; a push that does not happen is one of
-    zero."""
+def visit_block(lanes, start, beta: float) -> None:
+    """One push of each point of the block's contacts (``start``: the block's first number),
+    the first point and then the second, as the record pass does. As
+    :func:`sandbox.solvers.wide.visit_block`, the loop reads and writes ``lanes`` itself, so
+    it runs as vector instructions; a push that does not happen is one of zero."""
     for lane in range(LANES):
         i = start + np.uint64(lane)
         mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
         n = lanes[i + NX], lanes[i + NY]
         pa = lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS], lanes[i + ATURN]
         pb = lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS], lanes[i + BTURN]
-        b0, b1 = i + P0, i + P1  # the points' fields (read here: the loop hands no one lanes)
+        b0, b1 = i + P0, i + P1
         point = (
             (lanes[b0 + LAX], lanes[b0 + LAY]),
             (lanes[b0 + LBX], lanes[b0 + LBY]),
             lanes[b0 + DEPTH],
             lanes[b0 + ALLOWED],
         )
-        pa, pb, sep, pushed = push_point(pa, pb, mass, n, point, beta)
-        if points == 2:
-            point = (
-                (lanes[b1 + LAX], lanes[b1 + LAY]),
-                (lanes[b1 + LBX], lanes[b1 + LBY]),
-                lanes[b1 + DEPTH],
-                lanes[b1 + ALLOWED],
-            )
-            pa, pb, sep1, pushed1 = push_point(pa, pb, mass, n, point, beta)
-            sep, pushed = min(sep, sep1), pushed | pushed1
-        lanes[i + WORST] = min(lanes[i + WORST], sep)
-        lanes[i + MOVED] = max(lanes[i + MOVED], 1.0 if pushed else 0.0)
+        pa, pb, sep0, pushed0 = push_point(pa, pb, mass, n, point, beta)
+        point = (
+            (lanes[b1 + LAX], lanes[b1 + LAY]),
+            (lanes[b1 + LBX], lanes[b1 + LBY]),
+            lanes[b1 + DEPTH],
+            lanes[b1 + ALLOWED],
+        )
+        pa, pb, sep1, pushed1 = push_point(pa, pb, mass, n, point, beta)
+        lanes[i + WORST] = min(lanes[i + WORST], min(sep0, sep1))
+        lanes[i + MOVED] = max(lanes[i + MOVED], 1.0 if pushed0 | pushed1 else 0.0)
         lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS], lanes[i + ATURN] = pa
         lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS], lanes[i + BTURN] = pb
 
 
 @njit
-def visit_colour(lanes, owners, blocks, poses, beta: float):
-    """One push of every point of a colour's contacts (``blocks`` = (first, discs, end): its
-    two-point blocks from ``first``, its discs' from ``discs`` to ``end``): the bodies' poses
-    (``poses``, a row (x, y, cos, sin, turn) per body, :func:`take_poses`) into all the
-    colour's lanes, the pushes, the poses back (as :func:`sandbox.solvers.wide.visit_colour`).
-    Returns (smallest separation seen (m), whether anything moved)."""
-    first, discs, end = blocks
+def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
+    """One push of every point of a colour's contacts (blocks ``first`` to ``end``): the
+    bodies' poses (``poses``, a row (x, y, cos, sin, turn) per body, :func:`take_poses`) into
+    all the colour's lanes, the pushes, the poses back (as
+    :func:`sandbox.solvers.wide.visit_colour`). Returns (smallest separation seen (m),
+    whether anything moved)."""
     for block in range(first, end):
         start = np.uint64(block) * np.uint64(BLOCK)
         for lane in range(LANES):
@@ -199,10 +175,8 @@ def visit_colour(lanes, owners, blocks, poses, beta: float):
             lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS] = w[0], w[1], w[2], w[3]
             lanes[i + ATURN], lanes[i + BTURN] = v[4], w[4]
             lanes[i + WORST], lanes[i + MOVED] = 0.0, 0.0
-    for block in range(first, discs):
-        visit_block(lanes, np.uint64(block) * np.uint64(BLOCK), beta, 2)
-    for block in range(discs, end):
-        visit_block(lanes, np.uint64(block) * np.uint64(BLOCK), beta, 1)
+    for block in range(first, end):
+        visit_block(lanes, np.uint64(block) * np.uint64(BLOCK), beta)
     worst, moved = 0.0, 0.0
     for block in range(first, end):
         start = np.uint64(block) * np.uint64(BLOCK)
