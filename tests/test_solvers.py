@@ -261,8 +261,14 @@ def test_without_position_correction_positions_are_left_alone():
 # --- penetration options ------------------------------------------------------------------------
 def overlap_world(method, static_a=False):
     """Two boxes (0 static or dynamic, mass 1; 1 dynamic, mass 3) overlapping by 0.1 m, fixed
-    by the classic pass (the slides' formulas, not the layered one)."""
-    w = World(gravity=(0, 0), penetration=method, slop=0.0, robust_positions=False)
+    by the classic pass (the slides' formulas, not the layered one), every pass run."""
+    w = World(
+        gravity=(0, 0),
+        penetration=method,
+        slop=0.0,
+        robust_positions=False,
+        position_tolerance=0.0,
+    )
     a = w.add_body(Body("a", type="static" if static_a else "dynamic", position=(0.0, 0.0)))
     a.add_shape(Box(1.0, 1.0, density=1.0))
     b = w.add_body(Body("b", position=(0.9, 0.0)))
