@@ -68,6 +68,13 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
     :func:`sandbox.solvers.wide.place` (an empty lane: contact -1, bodies the row of
     :func:`take_poses` no body uses); ``lanes`` packed (:func:`pack`; ``bounds`` = (slop,
     push) (m), as :func:`allowed_separation`)."""
+    if not has_two_points(contacts, k):  # no lanes (discs): the visit order, nothing placed
+        order = np.empty(k, dtype=np.int64)
+        half = (k + 1) // 2
+        for r in range(k):
+            order[r] = visit(r, half)
+        owners = np.empty((3, 0), dtype=np.int64)
+        return order, np.empty(0), owners, np.zeros(1, dtype=np.int64), np.arange(k)
     colours = np.empty(k, dtype=np.int64)
     ends = np.empty((4, k), dtype=np.int64)
     count = colour(contacts, k, bodies, colours, True, False, ends)
@@ -93,6 +100,15 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
     if wide:
         pack(contacts, bodies, lanes, owners, blocks, bounds)
     return order, lanes, owners, starts, alone
+
+
+@njit
+def has_two_points(contacts, k: int) -> bool:
+    """Whether any of the first ``k`` contacts has two points (only those go in lanes)."""
+    for i in range(k):
+        if contacts[i]["count"] == 2:
+            return True
+    return False
 
 
 @njit
