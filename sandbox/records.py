@@ -304,6 +304,7 @@ CONTEXT = np.dtype(
         ("contact_points", I8),
         ("warm_started_points", I8),
         ("shock_layers", I8),
+        ("position_passes", I8),  # position passes in the last step (sandbox.penetration)
         ("sweeps", I8),  # iterative solver: velocity sweeps in the last step (more at a large dt)
         ("sweep_direction", I8),  # sweep and prune: the direction PROXY["order"] is sorted
         # along (sandbox.broadphase.sap.DIRECTIONS), -1: none yet

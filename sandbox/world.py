@@ -382,13 +382,16 @@ class World(Building, Measures):
         margin needs: ``pair_tests`` is 0 in such a step, and ``pairs`` counts the kept ones,
         those within that spare margin too; and ``shock_layers``; and
         ``sweeps``, the velocity sweeps of the iterative and shock solvers: ``iterations``,
-        more at a large dt, where they go on until the contacts hold)."""
+        more at a large dt, where they go on until the contacts hold; and ``position_passes``,
+        the passes of the overlap fix: up to ``position_iterations``, fewer once no point
+        overlaps more than ``position_tolerance``)."""
         if self._found_stats is not None:
             return dict(self._found_stats)
         if self.steps == 0:
             return {}
         ctx = self.context[0]
         keys = ["pair_tests", "pairs", "contacts", "contact_points", "warm_started_points"]
+        keys.append("position_passes")
         if self.settings.solver == "shock":
             keys.append("shock_layers")
         if self.settings.solver in ("iterative", "shock"):

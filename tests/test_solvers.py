@@ -353,14 +353,16 @@ def test_position_passes_stop_once_no_overlap_exceeds_the_tolerance(tolerance):
     # passes with is deeper than position_tolerance (all 3 passes), and 0.8 once it is within
     # it (one pass, Box2D's stop); tolerance 0 runs every pass down to the slop
     w, ball = ball_sunk_in_ground(0.1, position_tolerance=tolerance)
-    slop, depths = w.settings.slop, [0.1]
+    slop, depths, counted = w.settings.slop, [0.1], []
     for _ in range(14):
         w.step()
         depths.append(0.5 - ball.position[1])
-    for before, after in zip(depths[:-1], depths[1:], strict=True):
+        counted.append(w.stats["position_passes"])
+    for before, after, ran in zip(depths[:-1], depths[1:], counted, strict=True):
         # the passes start from where the last step left it (no velocity, no gravity)
         passes = 3 if before > tolerance else 1
         assert after - slop == pytest.approx((before - slop) * 0.8**passes, rel=1e-9)
+        assert ran == passes  # what world.stats reports
     assert np.all(np.diff(depths) < 0.0) and depths[-1] > slop
     assert tuple(ball.velocity) == (0.0, 0.0)
 
