@@ -40,10 +40,11 @@
 #
 # The first sections run these passes as the slide has them (`robust_positions: false`, and
 # every pass of a step: `position_tolerance: 0`). The engine's default adds three things to
-# them. Two are shown in the last section: the passes go from the ground up, and an overlap a
-# body *started* the step with comes out at a bounded speed. The third is Box2D's: a step's
-# passes stop once no point overlaps more than `position_tolerance` (15 mm, three slops), so a
-# resting pile, whose overlaps are about the slop, takes one pass a step instead of three.
+# them. Two are shown in the section on the default: the passes go from the ground up, and an
+# overlap a body *started* the step with comes out at a bounded speed. The third, Box2D's, in
+# the last section: a step's passes stop once no point overlaps more than
+# `position_tolerance` (15 mm, three slops), so a resting pile, whose overlaps are a few
+# millimetres, takes one pass a step instead of three.
 
 # %%
 import math
@@ -407,7 +408,7 @@ save_figure(fig, OUT / "robust_positions.png", dpi=100)
 # `position_iterations` (3) is how many passes a step may take. Box2D stops them early: once a
 # pass finds no point overlapping more than three slops (`position_tolerance`, 15 mm), the
 # overlap left is the velocity solver's to hold, and another pass would only trim
-# millimetres. A pile at rest overlaps by about the slop, so it takes one pass a step. The
+# millimetres. A pile at rest overlaps by a few millimetres, so it takes one pass a step. The
 # passes as the slide has them (`position_tolerance: 0`) go on while anything overlaps beyond
 # the slop. `world.stats["position_passes"]` counts them; here for a pile of 144 discs dropped
 # on the ground.

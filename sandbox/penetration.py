@@ -319,9 +319,9 @@ def fix_positions(
     :func:`sandbox.joints.positions_together.solve_joint_positions_together`), until a pass
     finds no point overlapping more than ``position_tolerance`` (and the joints within the
     slop; Box2D 2.x's test: a resting pile takes one pass, a deep overlap all of them); then
-    each body's orientation turned by what the passes turned (``context["position_passes"]``:
-    how many passes ran). Nothing at all when ``settings.position_correction`` is off. Returns the smallest separation the last contact
-    pass saw (m, < 0 overlapping)."""
+    each body's orientation turned by what the passes turned. ``context["position_passes"]``
+    gets how many passes ran. Nothing at all when ``settings.position_correction`` is off.
+    Returns the smallest separation the last contact pass saw (m, < 0 overlapping)."""
     ctx = context[0]
     worst = 0.0
     ctx["position_passes"] = 0
