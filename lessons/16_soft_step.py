@@ -623,9 +623,9 @@ fig.tight_layout()
 save_figure(fig, OUT / "substeps_vs_iterations.png", dpi=100)
 
 # %% [markdown]
-# Doubling the sweeps halves the iterative sag or better (107, 48, 21, 8.0, 2.7 and 0.62 mm for
+# Doubling the sweeps halves the iterative sag or better (105, 48, 21, 8.0, 2.7 and 0.62 mm for
 # $N$ = 5 to 160: the $1/N$ of lesson 09, then faster); doubling the substeps at the stiffness
-# cap divides the soft sag by four (124, 30, 7.5, 1.9 mm: the $1/S^2$ of the static error). Per
+# cap divides the soft sag by four (127, 30, 7.5, 1.9 mm: the $1/S^2$ of the static error). Per
 # unit of arithmetic, substeps should win. On this engine they do not, at any cost measured:
 # read the figure at equal cost (one vertical line), and the iterative line lies below the soft
 # one everywhere. 4 substeps sag 30 mm where 20 sweeps, which cost a little less, sag 21; 8
@@ -816,7 +816,7 @@ save_figure(fig, OUT / "relax_and_restitution.png", dpi=100)
 # ball still had 2 cm to fall, at 6.213 m/s, where it hit the ground at $\sqrt{2gh}$ =
 # 6.264 m/s; the second impact the soft step meets a step late, the ball already 13 mm deep,
 # and the bounce starts from there. So the first apex is 0.485 m, 2.9% below $e^2 h$ =
-# 0.5 m, the next ones 10% and 26% short; the iterative solver, whose step puts a ball that
+# 0.5 m, the next ones 12% and 26% short; the iterative solver, whose step puts a ball that
 # turns before touching back on the surface (lesson 07), reaches 0.4985 m (0.3% short), then
 # 6% and 13% short. The fourth impact comes at 0.67 m/s, under the 1 m/s threshold: no more
 # bounces. With $e$ = 0 the ball stops dead: the overdamped soft contact gives nothing back.
@@ -1316,7 +1316,7 @@ save_figure(fig, OUT / "mass_ratio.png", dpi=100)
 # - **it ties** on the pyramid of base 20 with the defaults, where its contacts are capped at
 #   30 Hz (30 against 32 mm);
 # - **it loses** on small stacks (2.0 against 0.79 mm at base 5), on bounces, which fall
-#   shorter (apexes 3%, 10%, 26% below $e^{2n}h$, against 0.3%, 6%, 13%), and on time: per unit
+#   shorter (apexes 3%, 12%, 26% below $e^{2n}h$, against 0.3%, 6%, 13%), and on time: per unit
 #   of arithmetic its substeps sag less than sweeps, but the iterative sweeps visit eight
 #   contacts at once and its passes one, so at equal time the iterative solver sagged less at
 #   every cost measured (section 3). 8 substeps make the pyramid four times stiffer (3.0 cm
