@@ -109,6 +109,16 @@ def colour(
 
 
 @njit
+def any_with(ends, k: int, points: int) -> bool:
+    """Whether any of the first ``k`` contacts has ``points`` points (``ends`` as
+    :func:`colour` fills it)."""
+    for i in range(k):
+        if ends[0, i] == points:
+            return True
+    return False
+
+
+@njit
 def buffers(k: int, count: int):
     """(lanes, owners, starts) with room for ``k`` contacts in ``count`` colours: ``owners``
     (3, lanes) holds each lane's contact and its two bodies."""
