@@ -14,15 +14,19 @@ which loads what the other compiled and compiles whatever it missed. numba compi
 function at a time per process, and every world steps through the same stages, so a process
 loads from the cache what the other has already written there, and compiles again what the
 other is still compiling. The two shares are therefore planned (:data:`FIRST_SHARE`), not dealt
-round-robin: the first compiles the stages with the iterative solver's one-call step, then the
-soft step; the second meanwhile compiles the kernels lessons call on their own, which no step
-uses (:func:`lesson_kernels`, about 25 s), so that by the time it steps worlds most of the
-stages are in the cache, and then the forces and the integrators, which the first share never
-steps. Dealt round-robin, both shares began with the iterative solver (once in one call, once
-stage by stage) and compiled the same stages side by side for 40 s, and both compiled the soft
-step and the force generators again. Measured on the project's 2-core machine from an empty
-cache (`sandbox warmup`, alternating the two codes): 82 to 86 s wall and 141 to 150 CPU-s
-planned, against 101 to 105 s and 182 to 190 CPU-s round-robin, and about 121 s in one process.
+round-robin: the first compiles the stages with the iterative solver's one-call step (the
+longest family, 42 s on its own), then the other rigid solvers, continuous collision and the
+broadphases, which reuse those stages; the second meanwhile compiles the kernels lessons call
+on their own, which no step uses (:func:`lesson_kernels`), then the soft step (22 s after the
+stages), the forces and the integrators, which the first share never steps, and the soft
+step's joint passes (:func:`joint_passes`). Dealt round-robin, both shares began with the
+iterative solver (once in one call, once stage by stage) and compiled the same stages side by
+side for 40 s, and both compiled the soft step and the force generators again. Measured on the
+project's 2-core machine from an empty cache (`sandbox warmup`, alternating the two codes):
+82 to 86 s wall and 141 to 150 CPU-s planned, against 101 to 105 s and 182 to 190 CPU-s
+round-robin, and about 121 s in one process. With the soft step in the first share after the
+iterative solver, the first share alone took 72 s; moved to the second: 64.0 and 64.4 s wall
+and 110 to 111 CPU-s, against 74.6 and 75.8 s and 138 to 140 CPU-s (one process: 103 s).
 """
 
 from __future__ import annotations
@@ -171,15 +175,28 @@ def joint_passes() -> None:
 
 
 # two shares: the first's families, in this order; the second takes the others, the families of
-# SECOND_SHARE_FIRST first (the stages again, loaded by then, and what the first never steps)
-FIRST_SHARE = ("iterative solver", "soft solver", "soft solver, staged", "soft step with forces")
-SECOND_SHARE_FIRST = (
+# SECOND_SHARE_FIRST first (the soft step and the forces, which the first never steps)
+FIRST_SHARE = (
+    "iterative solver",
     "iterative solver, staged",
+    "shock solver",
+    "shock solver, staged",
+    "pairwise solver",
+    "pairwise solver, staged",
+    "continuous collision",
+    "brute broadphase",
+    "grid broadphase",
+    "quadtree broadphase",
+    "kdtree broadphase",
+)
+SECOND_SHARE_FIRST = (
+    "soft solver",
+    "soft solver, staged",
+    "soft step with forces",
     "explicit_euler and forces",
     "verlet and forces",
     "rk4 and forces",
     "rk4 and forces, staged",
-    "continuous collision",
 )
 
 
@@ -209,19 +226,18 @@ def warm_families(families, report=print) -> None:
 def warm_part(index: int, parts: int, report=print) -> set[str]:
     """Compile (or load) share ``index`` of ``parts`` of the families, and the functions lessons
     call on their own (:func:`helpers`): with two shares the second begins with
-    :func:`lesson_kernels` and the first ends with :func:`joint_passes` (see the module),
-    otherwise the first share ends with all of them. Returns the labels of the families it
+    :func:`lesson_kernels` and ends with :func:`joint_passes` (see the module), otherwise the
+    first share ends with all of them. Returns the labels of the families it
     stepped."""
     share = part(index, parts)
     planned = parts == 2
     if planned and index == 1:
         lesson_kernels()  # while the first share compiles the stages
     warm_families(share, report)
-    if index == 0:
-        if planned:
-            joint_passes()  # after the soft step, whose kernels they share
-        else:
-            helpers()
+    if planned and index == 1:
+        joint_passes()  # after the soft step, whose kernels they share
+    elif index == 0 and not planned:
+        helpers()
     return {label for label, _, _ in share}
 
 
