@@ -43,10 +43,10 @@ from sandbox.solvers.impulses import block_totals, friction_step, normal_step
 from sandbox.solvers.wide import (
     COLOURS,
     LANES,
-    any_with,
     buffers,
     colour,
     groups,
+    has_two_points,
     pack,
     place,
     put_velocities,
@@ -221,7 +221,7 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     count = colour(contacts, k, bodies, colours, False, True, ends)
     empty = len(bodies)  # the row of velocities that empty lanes read and write
     # two-point contacts in two groups a colour: with the block solver (2 c), without (2 c + 1)
-    if any_with(ends, k, 2):
+    if has_two_points(contacts, k):
         lanes, owners, starts = buffers(k, 2 * count)
         keys = groups(ends, k, colours, count, 2, True)
         blocks = place(ends, k, keys, 2 * count, owners, empty, starts)

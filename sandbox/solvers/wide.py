@@ -109,11 +109,11 @@ def colour(
 
 
 @njit
-def any_with(ends, k: int, points: int) -> bool:
-    """Whether any of the first ``k`` contacts has ``points`` points (``ends`` as
-    :func:`colour` fills it)."""
+def has_two_points(contacts, k: int) -> bool:
+    """Whether any of the first ``k`` contacts has two points (only those go in the two-point
+    lanes, here and in :mod:`sandbox.solvers.wide_positions`)."""
     for i in range(k):
-        if ends[0, i] == points:
+        if contacts[i]["count"] == 2:
             return True
     return False
 

@@ -32,7 +32,7 @@ from sandbox.math2d import pose_of, set_pose
 from sandbox.solvers.impulses import push_point
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.soft import excess_depth
-from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, groups, place
+from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, groups, has_two_points, place
 
 MEASURED = "one pass of 2,369 contacts: 23 us eight at a time against 70 us one by one"
 
@@ -100,15 +100,6 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
     if wide:
         pack(contacts, bodies, lanes, owners, blocks, bounds)
     return order, lanes, owners, starts, alone
-
-
-@njit
-def has_two_points(contacts, k: int) -> bool:
-    """Whether any of the first ``k`` contacts has two points (only those go in lanes)."""
-    for i in range(k):
-        if contacts[i]["count"] == 2:
-            return True
-    return False
 
 
 @njit
