@@ -76,6 +76,23 @@ if JIT_ENABLED:
     NOTICE = CompileNotice()
     numba.core.event.register("numba:compile", NOTICE)
 
+    class CompileCount(numba.core.event.Listener):
+        """How many functions this process compiles from now on (``count``), nested ones
+        included: a warmup's progress between two families. ``close()`` stops counting."""
+
+        def __init__(self) -> None:
+            self.count = 0
+            numba.core.event.register("numba:compile", self)
+
+        def on_start(self, event) -> None:
+            self.count += 1
+
+        def on_end(self, event) -> None:
+            pass
+
+        def close(self) -> None:
+            numba.core.event.unregister("numba:compile", self)
+
     def njit(*args, **kwargs):
         """``numba.njit(cache=True)`` (accepts the same arguments as numba.njit); without a
         writable cache folder, ``cache=False``."""
@@ -97,6 +114,14 @@ else:
     def literally(value):
         """Plain-Python stand-in for ``numba.literally``: the value itself."""
         return value
+
+    class CompileCount:
+        """Plain-Python stand-in: nothing compiles (``count`` stays 0)."""
+
+        count = 0
+
+        def close(self) -> None:
+            pass
 
 
 def quiet_compiles() -> None:

@@ -34,6 +34,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import threading
 import time
 
 import numpy as np
@@ -244,29 +245,62 @@ def warm_part(index: int, parts: int, report=print) -> set[str]:
 def warm_up(report=print, jobs: int | None = None) -> float:
     """Compile (or load) every kernel; mark the cache warm. Returns the seconds it took.
     ``jobs``: processes to share the work between (default: 2 on a machine with two cores or
-    more, else 1; always 1 without a cache to share, see the module)."""
+    more, else 1; always 1 without a cache to share, see the module).
+
+    ``report`` gets the line ``"  <family>: ready"`` once per family, as soon as the process
+    whose share it is has stepped it: the other processes print theirs, and a thread here
+    passes them on (:func:`relay`), so a progress bar moves with both shares."""
     start = time.perf_counter()
     jobs = jobs or min(2, os.cpu_count() or 1)
     if CACHE_FOLDER is None:  # nothing to share: each process would compile it all
         jobs = 1
+    once = Once(report)
     others = [
         subprocess.Popen(
-            [sys.executable, "-m", "sandbox", "warmup", "--quiet", "--part", f"{i}/{jobs}"],
+            [sys.executable, "-m", "sandbox", "warmup", "--part", f"{i}/{jobs}"],
             stdin=subprocess.DEVNULL,
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,  # one progress bar on the terminal: this process's
+            stdout=subprocess.PIPE,  # its families' "ready" lines, passed on by relay()
+            stderr=subprocess.DEVNULL,  # no compile notice nor bar of its own
+            text=True,
         )
         for i in range(1, jobs)
     ]
-    done = warm_part(0, jobs, report)  # with the helpers lessons call on their own
-    for process in others:
+    relays = [threading.Thread(target=relay, args=(p.stdout, once), daemon=True) for p in others]
+    for thread in relays:
+        thread.start()
+    done = warm_part(0, jobs, once)  # with the helpers lessons call on their own
+    for process, thread in zip(others, relays, strict=True):
         process.wait()
+        thread.join()
     if jobs > 1:  # the others' shares: loaded from the cache, or compiled here if one missed them
-        warm_families([family for family in worlds() if family[0] not in done], report)
+        warm_families([family for family in worlds() if family[0] not in done], once)
     mark_warm()
     if CACHE_FOLDER is not None:  # a background warmup's lock (sandbox.cli.first_run)
         (CACHE_FOLDER / "warming").unlink(missing_ok=True)
     return time.perf_counter() - start
+
+
+class Once:
+    """``report`` for each line the first time it comes (a family the other process compiled
+    is stepped again here at the end, to load it: it is not ready twice), from any thread."""
+
+    def __init__(self, report) -> None:
+        self.report, self.seen, self.lock = report, set(), threading.Lock()
+
+    def __call__(self, line: str) -> None:
+        with self.lock:
+            if line in self.seen:
+                return
+            self.seen.add(line)
+            self.report(line)
+
+
+def relay(stream, report) -> None:
+    """Pass each line another warmup process prints (its families' "ready" lines) to
+    ``report``, until that process ends."""
+    for line in stream:
+        if line.strip():
+            report(line.rstrip("\n"))
 
 
 def where() -> str:

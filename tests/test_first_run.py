@@ -7,6 +7,7 @@ import io
 import os
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -156,6 +157,80 @@ def test_warmup_in_two_processes_reports_every_family_once_and_marks_warm(tmp_pa
     for label, _, _ in worlds():
         assert lines.count(f"  {label}: ready") == 1, label
     assert lines[-1].startswith("done in ") and compile_cache.is_warm()
+
+
+def test_the_other_process_reports_its_families_as_it_steps_them():
+    # warm_up(jobs=2): the second process's families are ready as it steps them (its lines,
+    # relayed by a thread here), not only when this process loads them again at the end; every
+    # family once (the suite's compile cache: loaded)
+    import threading
+
+    from sandbox.warmup import part, warm_up, worlds
+
+    heard = []
+    warm_up(lambda line: heard.append((line, threading.current_thread().name)), jobs=2)
+    lines = [line for line, _ in heard]
+    for label, _, _ in worlds():
+        assert lines.count(f"  {label}: ready") == 1, label
+    main = threading.main_thread().name
+    by_line = dict(heard)
+    for index in (0, 1):
+        for label, _, _ in part(index, 2):
+            assert (by_line[f"  {label}: ready"] == main) is (index == 0), label
+
+
+def test_the_family_bar_moves_and_keeps_time_on_a_terminal():
+    from sandbox.cli.warmup import FamilyBar
+    from sandbox.warmup import worlds
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    screen = Terminal()
+    with FamilyBar(screen, tick=0.02) as bar:
+        bar.ready("  iterative solver: ready")
+        bar.ready("  shock solver: ready")
+        drawn = len(screen.getvalue())
+        time.sleep(0.2)  # redrawn by the ticker meanwhile, with no family ready
+        assert len(screen.getvalue()) > drawn
+    text = screen.getvalue()
+    total = sum(1 for _ in worlds())
+    assert f"2/{total} families" in text and "shock solver ready, " in text
+    assert " kernels compiled" in text
+    assert "families/s" not in text and "<" not in text  # no rate, no time left
+
+
+def test_compiles_are_counted_while_listened_to():
+    from sandbox import jit
+
+    counted = jit.CompileCount()
+    jit.njit(cache=False)(lambda x: x + 1)(1)
+    counted.close()
+    jit.njit(cache=False)(lambda x: x + 2)(1)
+    assert counted.count == (1 if jit.JIT_ENABLED else 0)
+
+
+@pytest.mark.parametrize("terminal", [False, True])
+def test_lessons_on_a_cold_cache_show_the_warmup_on_a_terminal(monkeypatch, terminal):
+    # `sandbox lessons` compiles first: with the warmup's progress bar on a terminal, quiet
+    # (after its one line) in a log or a notebook
+    from sandbox.cli import lessons
+
+    calls = []
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
+    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
+    monkeypatch.setattr(lessons.sys.stderr, "isatty", lambda: terminal, raising=False)
+    lessons._compile_first()
+    if compile_cache.CACHE_FOLDER is None:
+        assert calls == []
+        return
+    (args,) = calls
+    if terminal:
+        assert args[-2:] == ["sandbox", "warmup"]
+    else:
+        assert args[-1] == "--quiet"
 
 
 def test_warmup_refuses_a_bad_share_in_one_line(tmp_path):

@@ -21,7 +21,8 @@ def add_parser(sub) -> None:
         "warmup",
         help="compile every kernel ahead of time",
         description="Compile every kernel of the engine for this machine, once, so that later "
-        "runs start at once.",
+        "runs start at once. On a terminal, a progress bar over the families of kernels; "
+        "otherwise one line per family ready.",
         epilog=EXAMPLES,
     )
     cmd.add_argument("--quiet", action="store_true", help="print nothing (a background warmup)")
@@ -46,24 +47,86 @@ def _part(text: str) -> tuple[int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Compile every kernel, saying what is ready."""
+    """Compile every kernel, saying what is ready: on a terminal one progress bar over the
+    families, else one line per family."""
+    import sys
+
     from sandbox.warmup import warm_up, where
-
-    if args.quiet:
-        from sandbox.jit import quiet_compiles
-
-        quiet_compiles()
-
-    def report(line: str) -> None:
-        if not args.quiet:
-            print(line, flush=True)
 
     if args.part is not None:  # a share of another warmup, which marks the cache warm
         from sandbox.warmup import warm_part
 
-        warm_part(*args.part, report)
+        if args.quiet:
+            from sandbox.jit import quiet_compiles
+
+            quiet_compiles()
+        warm_part(*args.part, (lambda line: None) if args.quiet else _print)
         return 0
-    report(f"compiling the engine into {where()}")
-    seconds = warm_up(report, args.jobs)
-    report(f"done in {seconds:.1f} s: every kernel is compiled")
+    if args.quiet:
+        from sandbox.jit import quiet_compiles
+
+        quiet_compiles()
+        warm_up(lambda line: None, args.jobs)
+        return 0
+    print(f"compiling the engine into {where()}", flush=True)
+    if sys.stderr.isatty():
+        with FamilyBar(sys.stderr) as bar:
+            seconds = warm_up(bar.ready, args.jobs)
+    else:
+        seconds = warm_up(_print, args.jobs)
+    print(f"done in {seconds:.1f} s: every kernel is compiled", flush=True)
     return 0
+
+
+def _print(line: str) -> None:
+    print(line, flush=True)
+
+
+class FamilyBar:
+    """A progress bar on ``screen`` (a terminal) over the families the warmup steps, moved by
+    each ``"  <family>: ready"`` line (:func:`sandbox.warmup.warm_up`'s report), with the time
+    so far, the last family ready and how many kernels this process has compiled, redrawn
+    every second: the first family alone compiles for most of a minute, and a bar that stood
+    still that long would look hung. No rate nor time left: the families take from under a
+    second to 40 s each. The compile notice and its own bar of kernels stay quiet meanwhile."""
+
+    FORMAT = "{desc}{percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} families [{elapsed}{postfix}]"
+
+    def __init__(self, screen, tick: float = 1.0) -> None:
+        import threading
+
+        from tqdm import tqdm
+
+        from sandbox.jit import CompileCount, quiet_compiles
+        from sandbox.warmup import worlds
+
+        quiet_compiles()
+        self.kernels = CompileCount()
+        self.last = ""
+        total = sum(1 for _ in worlds())
+        self.bar = tqdm(total=total, bar_format=self.FORMAT, leave=False, file=screen)
+        self.stop = threading.Event()
+        self.ticker = threading.Thread(target=self._tick, args=(tick,), daemon=True)
+        self.ticker.start()
+
+    def _postfix(self) -> str:
+        compiled = f"{self.kernels.count} kernels compiled"
+        return f"{self.last} ready, {compiled}" if self.last else compiled
+
+    def _tick(self, tick: float) -> None:
+        while not self.stop.wait(tick):
+            self.bar.set_postfix_str(self._postfix(), refresh=True)
+
+    def ready(self, line: str) -> None:
+        self.last = line.strip().removesuffix(": ready")
+        self.bar.set_postfix_str(self._postfix(), refresh=False)
+        self.bar.update(1)
+
+    def __enter__(self) -> FamilyBar:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop.set()
+        self.ticker.join()
+        self.kernels.close()
+        self.bar.close()
