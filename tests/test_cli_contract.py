@@ -52,6 +52,9 @@ def test_every_option_has_help():
         (["simulate", str(DROP), "--tarce=x.csv"], "error: --tarce: unknown option (did you mean --trace?)"),
         (["simulat", str(DROP)], "(did you mean simulate?)"),
         (["simulate", str(DROP), "--engine", "pymonk"], "(did you mean pymunk?)"),
+        # another command's option: said so, never "did you mean" the option itself
+        (["simulate", str(DROP), "--out", "x"], "error: --out: unknown option for `sandbox simulate` (an option of `sandbox compare` and `sandbox lessons`; see `sandbox simulate -h`)"),
+        (["lessons", "--outt", "x"], "error: --outt: unknown option (did you mean --out?)"),
     ],
 )  # fmt: skip
 def test_mistyped_flags_get_one_line_with_a_suggestion(capsys, args, line):

@@ -45,13 +45,16 @@ class Parser(argparse.ArgumentParser):
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
 
+    def parse_known_args(self, args=None, namespace=None):
+        self._argv = list(sys.argv[1:] if args is None else args)  # for error(): the command
+        return super().parse_known_args(args, namespace)
+
     def error(self, message: str):
         if message.startswith("unrecognized arguments: "):
             unknown = message[len("unrecognized arguments: ") :].split()
             flag = next((u for u in unknown if u.startswith("-")), unknown[0])
             option = flag.split("=", 1)[0]
-            hint = _close(option, self._known_options())
-            raise CliError(option, f"unknown option{hint}")
+            raise CliError(option, f"unknown option{self._hint(option)}")
         if message.startswith("argument "):
             message = message[len("argument ") :]
             name, _, rest = message.partition(": ")
@@ -61,6 +64,28 @@ class Parser(argparse.ArgumentParser):
                 rest += _close(given, [c.strip() for c in choices.split(",")])
             raise CliError(name.split("/")[-1], rest)
         raise CliError("arguments", message)
+
+    def _commands(self) -> dict[str, Parser]:
+        """This parser's commands by name (none for a command's own parser)."""
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                return dict(action.choices)
+        return {}
+
+    def _hint(self, option: str) -> str:
+        """What to say about an unknown ``option``: the closest option of the command given
+        (``sandbox simulate --stesp``: did you mean --steps?), or, when it is another
+        command's option (``sandbox simulate --out``), which commands have it."""
+        commands = self._commands()
+        given = next((word for word in getattr(self, "_argv", []) if word in commands), None)
+        if given is None:
+            return _close(option, self._known_options())
+        own = commands[given]._known_options()
+        elsewhere = [name for name, sub in commands.items() if option in sub._known_options()]
+        if elsewhere:
+            where = " and ".join(f"`sandbox {name}`" for name in elsewhere)
+            return f" for `sandbox {given}` (an option of {where}; see `sandbox {given} -h`)"
+        return _close(option, own)
 
     def _known_options(self) -> list[str]:
         """Every option string of this parser and of its commands."""
