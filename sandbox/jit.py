@@ -124,6 +124,13 @@ else:
             pass
 
 
+def compile_noted() -> None:
+    """The command has said in its own line that compiling starts (``sandbox.cli.first_run``):
+    the compile notice keeps only its bar, so the wait is announced once."""
+    if JIT_ENABLED:
+        NOTICE.told = True
+
+
 def quiet_compiles() -> None:
     """No compile notice nor bar in this process (``sandbox warmup --quiet``)."""
     if JIT_ENABLED:

@@ -54,9 +54,15 @@ def test_a_large_scene_compiles_and_says_so(monkeypatch):
     monkeypatch.setattr(first_run, "engine_imported", lambda: False)  # a fresh command
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
     monkeypatch.setattr(compile_cache, "has_kernel", lambda name: False)
+    from sandbox import jit
+
+    if jit.JIT_ENABLED:
+        monkeypatch.setattr(jit.NOTICE, "told", False)
     first_run.choose_engine_speed({"bodies": [{}] * 210}, 240)  # pyramid 20: 50,400
     assert "SANDBOX_JIT" not in os.environ
     assert notes and "compiling the engine" in notes[0]
+    # one line: the compile notice, which would say it again, keeps only its bar
+    assert not jit.JIT_ENABLED or jit.NOTICE.told
 
 
 def test_a_large_scene_whose_step_is_cached_says_nothing(tmp_path, monkeypatch):

@@ -49,6 +49,9 @@ def choose_engine_speed(spec: dict, steps: int) -> None:
         note(f"the engine is not compiled for this machine yet: this run is plain Python{later}")
     elif not has_kernel(scene_kernel(spec)):
         note("compiling the engine for this machine, once: about a minute; later runs load it")
+        from sandbox.jit import compile_noted  # imports numba: this run compiles anyway
+
+        compile_noted()
 
 
 def scene_kernel(spec: dict) -> str:
