@@ -122,6 +122,39 @@ def test_compile_notice_on_a_terminal(monkeypatch):
     assert "kernels" not in log.getvalue()
 
 
+def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
+    # a one-call step's compile: a bar of the kernels it compiles from an empty cache (243 for
+    # the iterative solver's, 305 for the soft step's); anything else: a count, no length
+    from types import SimpleNamespace
+
+    from sandbox import jit
+
+    if not jit.JIT_ENABLED:
+        return
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    def event(name):
+        return SimpleNamespace(
+            data={"dispatcher": SimpleNamespace(py_func=SimpleNamespace(__name__=name))}
+        )
+
+    monkeypatch.setattr(jit.sys, "stderr", Terminal())
+    for name, total in (
+        ("fast_step", 243),
+        ("soft_step", 305),
+        ("place_bodies", None),
+        (None, None),
+    ):
+        notice = jit.CompileNotice()
+        notice.on_start(event(name) if name else None)
+        assert notice.bar.total == total, name
+        notice.on_end(None)
+        assert notice.bar is None
+
+
 def test_the_plain_python_note_ends_cleanly_without_a_background_warmup(monkeypatch):
     # SANDBOX_WARMUP=off: no background compile starts, and the note says no more than it is
     # (it ended in a dangling "; " before)
