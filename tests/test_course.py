@@ -56,6 +56,22 @@ def test_a_file_in_the_working_folder_wins_over_the_bundled_scene(tmp_path, monk
     assert "bundled" not in capsys.readouterr().out
 
 
+def test_a_mistyped_scene_name_points_to_the_bundled_scenes(tmp_path, monkeypatch, capsys):
+    # one line, exit 2, nothing written: the closest bundled scene when one is close
+    monkeypatch.chdir(tmp_path)
+    for name, hint in (
+        ("pyramd", "(did you mean the bundled scene pyramid? `sandbox scenes` lists"),
+        ("pyramd.json", "(did you mean the bundled scene pyramid?"),
+        ("nothing_like_it", "(`sandbox scenes` lists the bundled example scenes)"),
+    ):
+        assert main(["simulate", name, "--trace", "t.csv"]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith(f"error: file: cannot read '{name}': no such file {hint}"), err
+        assert err.count("\n") == 1 and not (tmp_path / "t.csv").exists()
+    assert main(["simulate", "sub/pyramd.json"]) == 2  # a path: only that it is not there
+    assert capsys.readouterr().err == "error: file: cannot read 'sub/pyramd.json': no such file\n"
+
+
 def test_scenes_help_has_examples(capsys):
     assert main(["scenes", "--help"]) == 0
     assert "examples:\n  sandbox scenes" in capsys.readouterr().out

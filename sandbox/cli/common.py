@@ -165,6 +165,17 @@ def parse_assignments(items: list[str] | None, option: str) -> list[tuple[str, o
     return out
 
 
+def _scene_hint(path: str) -> str:
+    """For a scene file that is not there: the bundled scene of the closest name, if any, and
+    where the bundled scenes are listed."""
+    from sandbox.bundled import scene_files
+
+    stem = Path(path).name.removesuffix(".json")
+    match = difflib.get_close_matches(stem, [f.stem for f in scene_files()], n=1, cutoff=0.6)
+    listed = "`sandbox scenes` lists the bundled example scenes"
+    return f" (did you mean the bundled scene {match[0]}? {listed})" if match else f" ({listed})"
+
+
 def load_spec(path: str, args: argparse.Namespace | None = None) -> dict:
     """Read and validate a scene file, applying command-line setting overrides.
 
@@ -177,6 +188,8 @@ def load_spec(path: str, args: argparse.Namespace | None = None) -> dict:
     found, bundled = resolve_scene(path)
     if bundled:
         print(f"{path}: no such file here; using the bundled example scene {found.name}")
+    elif not found.exists() and Path(path).parent == Path("."):  # a name, as of a bundled one
+        raise SceneError("file", f"cannot read {path!r}: no such file{_scene_hint(path)}")
     spec = validate_scene(read_scene_file(found))
     if args is not None:
         for key, value in parse_assignments(getattr(args, "set", None), "--set"):
