@@ -107,8 +107,9 @@ def run(args: argparse.Namespace) -> int:
 
 def _compile_first() -> None:
     """On a machine where the engine was never compiled, compile every kernel once before the
-    lessons (``sandbox warmup``), rather than in the first lesson's kernel: on a terminal with
-    the warmup's progress bar (a minute is never a silent wait), else with its one line."""
+    lessons (``sandbox warmup``), rather than in the first lesson's kernel, saying how it goes
+    (a minute is never a silent wait): on a terminal the warmup's progress bar, elsewhere (a
+    log, an editor's console) a line per family of kernels ready."""
     import os
     import subprocess
 
@@ -117,8 +118,7 @@ def _compile_first() -> None:
     if os.environ.get("SANDBOX_JIT") == "0" or CACHE_FOLDER is None or is_warm():
         return
     print("compiling the engine for this machine first, once (one to two minutes)", flush=True)
-    quiet = [] if sys.stderr.isatty() else ["--quiet"]
-    subprocess.run([sys.executable, "-m", "sandbox", "warmup", *quiet], check=False)
+    subprocess.run([sys.executable, "-m", "sandbox", "warmup"], check=False)
 
 
 def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
