@@ -161,10 +161,12 @@ def lesson_kernels() -> None:
 
 def joint_passes() -> None:
     """The soft step's joint passes called from Python on copies of a world's records, as the
-    soft step lesson compares them (solved together, or swept)."""
+    soft step lesson compares them (solved together, or swept); and the colouring of a
+    world's contacts into independent groups, as the stacking lesson counts them."""
     from sandbox.joints.direct import solve_joints_direct
     from sandbox.joints.solve import solve_joints_soft
     from sandbox.solvers.soft import softness
+    from sandbox.solvers.wide import colour
 
     world = sample_world(solver="soft")
     step(world)  # the joints' records prepared, as in a running world
@@ -173,6 +175,9 @@ def joint_passes() -> None:
     soft = softness(world.settings.joint_hertz, world.settings.joint_damping_ratio, h)
     for solve in (solve_joints_direct, solve_joints_soft):
         solve(arrays.joints.copy(), arrays.bodies.copy(), soft, True, 1.0 / h)
+    contacts = world.manifolds.records.copy()
+    colours = np.empty(len(contacts), dtype=np.int64)
+    colour(contacts, len(contacts), world.state.copy(), colours, False, True)
 
 
 # two shares: the first's families, in this order; the second takes the others, the families of
