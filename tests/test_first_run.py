@@ -266,6 +266,23 @@ def test_lessons_on_a_cold_cache_say_how_the_warmup_goes(monkeypatch):
     assert calls == [[sys.executable, "-m", "sandbox", "warmup"]]
 
 
+def test_the_warmup_in_a_log_says_no_compile_notice():
+    # `sandbox warmup` reports its families itself: the first-run notice ("note: compiling the
+    # engine ...") is not printed above them, also when it compiles (here: one function)
+    code = (
+        "import sandbox.warmup as w\n"
+        "from sandbox import jit\n"
+        "from sandbox.cli import main\n"
+        "w.warm_up = lambda report, jobs: jit.njit(cache=False)(lambda x: x + 1)(1) or 0.0\n"
+        "raise SystemExit(main(['warmup']))\n"
+    )
+    env = {**os.environ, "SANDBOX_JIT": "1"}
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "compiling the engine for this machine" not in done.stderr
+    assert done.stdout.startswith("compiling the engine into ")
+
+
 def test_warmup_refuses_a_bad_share_in_one_line(tmp_path):
     for bad in ("2/2", "x/2", "1"):
         done = run(["warmup", "--part", bad], {}, tmp_path)

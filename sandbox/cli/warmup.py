@@ -48,24 +48,18 @@ def _part(text: str) -> tuple[int, int]:
 
 def run(args: argparse.Namespace) -> int:
     """Compile every kernel, saying what is ready: on a terminal one progress bar over the
-    families, else one line per family."""
+    families, else one line per family (and never the compile notice of a first run: this
+    says what it compiles itself)."""
     import sys
 
-    from sandbox.warmup import warm_up, where
+    from sandbox.jit import quiet_compiles
+    from sandbox.warmup import warm_part, warm_up, where
 
+    quiet_compiles()
     if args.part is not None:  # a share of another warmup, which marks the cache warm
-        from sandbox.warmup import warm_part
-
-        if args.quiet:
-            from sandbox.jit import quiet_compiles
-
-            quiet_compiles()
         warm_part(*args.part, (lambda line: None) if args.quiet else _print)
         return 0
     if args.quiet:
-        from sandbox.jit import quiet_compiles
-
-        quiet_compiles()
         warm_up(lambda line: None, args.jobs)
         return 0
     print(f"compiling the engine into {where()}", flush=True)
@@ -88,7 +82,7 @@ class FamilyBar:
     so far, the last family ready and how many kernels this process has compiled, redrawn
     every second: the first family alone compiles for most of a minute, and a bar that stood
     still that long would look hung. No rate nor time left: the families take from under a
-    second to 40 s each. The compile notice and its own bar of kernels stay quiet meanwhile."""
+    second to 40 s each."""
 
     FORMAT = "{desc}{percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} families [{elapsed}{postfix}]"
 
@@ -97,10 +91,9 @@ class FamilyBar:
 
         from tqdm import tqdm
 
-        from sandbox.jit import CompileCount, quiet_compiles
+        from sandbox.jit import CompileCount
         from sandbox.warmup import worlds
 
-        quiet_compiles()
         self.kernels = CompileCount()
         self.last = ""
         total = sum(1 for _ in worlds())
