@@ -24,6 +24,13 @@ def run(args, env_extra, cwd):
     )
 
 
+class Terminal(io.StringIO):
+    """A screen that says it is a terminal (where progress bars are drawn)."""
+
+    def isatty(self):
+        return True
+
+
 def rows(path):
     with open(path, newline="") as f:
         return [[float(x) for i, x in enumerate(r) if i != 2] for r in list(csv.reader(f))[1:]]
@@ -97,10 +104,6 @@ def test_compile_notice_on_a_terminal(monkeypatch):
     if not jit.JIT_ENABLED:
         return
 
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
-
     screen = Terminal()
     monkeypatch.setattr(jit.sys, "stderr", screen)
     notice = jit.CompileNotice()
@@ -131,10 +134,6 @@ def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
 
     if not jit.JIT_ENABLED:
         return
-
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
 
     def event(name):
         return SimpleNamespace(
@@ -221,10 +220,6 @@ def test_the_other_process_reports_its_families_as_it_steps_them():
 def test_the_family_bar_moves_and_keeps_time_on_a_terminal():
     from sandbox.cli.warmup import FamilyBar
     from sandbox.warmup import worlds
-
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
 
     screen = Terminal()
     with FamilyBar(screen, tick=0.02) as bar:
