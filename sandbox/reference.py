@@ -119,7 +119,8 @@ def cli_reference() -> str:
         parts.append(f"## `sandbox {name}`\n")
         parts.append((sub.description or "").replace("\n", " ") + "\n")
         parts.append("```text\n" + sub.format_usage().strip() + "\n```\n")
-        rows = [_option_row(a, formatter) for a in sub._actions if a.dest != "help"]
+        shown = [a for a in sub._actions if a.dest != "help" and a.help != argparse.SUPPRESS]
+        rows = [_option_row(a, formatter) for a in shown]  # not the hidden ones
         if rows:
             parts.append("| argument | what it does |\n|---|---|\n" + "\n".join(rows) + "\n")
         if sub.epilog:

@@ -4,6 +4,7 @@ code runs."""
 
 from __future__ import annotations
 
+import argparse
 import copy
 import os
 import re
@@ -131,14 +132,23 @@ def test_the_reference_states_units_defaults_and_ranges():
 
 
 def test_command_line_page_lists_every_command_and_option():
+    # every option a user may give; the hidden ones (the warmup's --part, for its own helper
+    # process) not at all: they showed as "==SUPPRESS==" in the reference
     text = cli_reference()
     parser = build_parser()
+    hidden = 0
     for name, sub in parser._subparsers._group_actions[0].choices.items():
         assert f"## `sandbox {name}`" in text
         for action in sub._actions:
             for option in action.option_strings:
-                if option not in ("-h", "--help"):
+                if option in ("-h", "--help"):
+                    continue
+                if action.help == argparse.SUPPRESS:
+                    hidden += 1
+                    assert f"`{option}" not in text, f"{name} {option}"
+                else:
                     assert f"`{option}" in text, f"{name} {option}"
+    assert hidden and "SUPPRESS" not in text
 
 
 def test_lesson_list_has_one_line_per_lesson():
