@@ -18,10 +18,10 @@ round-robin: the first compiles the stages with the iterative solver's one-call 
 longest family, 42 s on its own), then the other rigid solvers, continuous collision and the
 broadphases, which reuse those stages; the second meanwhile compiles the kernels lessons call
 on their own, which no step uses (:func:`lesson_kernels`), then the soft step (22 s after the
-stages), the forces and the integrators, which the first share never steps, and the soft
-step's joint passes (:func:`joint_passes`). Dealt round-robin, both shares began with the
-iterative solver (once in one call, once stage by stage) and compiled the same stages side by
-side for 40 s, and both compiled the soft step and the force generators again. Measured on the
+stages), the forces and the integrators, which the first share never steps, and last the
+soft step's joint passes and the colouring on a world's records (:func:`record_kernels`).
+Dealt round-robin, both shares began with the iterative solver (once in one call, once stage
+by stage) and compiled the same stages side by side for 40 s, and both compiled the soft step and the force generators again. Measured on the
 project's 2-core machine from an empty cache (`sandbox warmup`, alternating the two codes):
 82 to 86 s wall and 141 to 150 CPU-s planned, against 101 to 105 s and 182 to 190 CPU-s
 round-robin, and about 121 s in one process. With the soft step in the first share after the
@@ -114,7 +114,7 @@ def worlds():
 def helpers() -> None:
     """The compiled functions lessons and tests call on their own."""
     lesson_kernels()
-    joint_passes()
+    record_kernels()
 
 
 def lesson_kernels() -> None:
@@ -159,10 +159,11 @@ def lesson_kernels() -> None:
     orientation.cos_sin(kind, rot, cs)
 
 
-def joint_passes() -> None:
-    """The soft step's joint passes called from Python on copies of a world's records, as the
-    soft step lesson compares them (solved together, or swept); and the colouring of a
-    world's contacts into independent groups, as the stacking lesson counts them."""
+def record_kernels() -> None:
+    """The kernels lessons call from Python on copies of a stepped world's records: the soft
+    step's joint passes, as the soft step lesson compares them (solved together, or swept),
+    and the colouring of the contacts into independent groups, as the stacking lesson counts
+    them."""
     from sandbox.joints.direct import solve_joints_direct
     from sandbox.joints.solve import solve_joints_soft
     from sandbox.solvers.soft import softness
@@ -232,7 +233,7 @@ def warm_families(families, report=print) -> None:
 def warm_part(index: int, parts: int, report=print) -> set[str]:
     """Compile (or load) share ``index`` of ``parts`` of the families, and the functions lessons
     call on their own (:func:`helpers`): with two shares the second begins with
-    :func:`lesson_kernels` and ends with :func:`joint_passes` (see the module), otherwise the
+    :func:`lesson_kernels` and ends with :func:`record_kernels` (see the module), otherwise the
     first share ends with all of them. Returns the labels of the families it
     stepped."""
     share = part(index, parts)
@@ -241,7 +242,7 @@ def warm_part(index: int, parts: int, report=print) -> set[str]:
         lesson_kernels()  # while the first share compiles the stages
     warm_families(share, report)
     if planned and index == 1:
-        joint_passes()  # after the soft step, whose kernels they share
+        record_kernels()  # after the soft step, whose kernels they share
     elif index == 0 and not planned:
         helpers()
     return {label for label, _, _ in share}
