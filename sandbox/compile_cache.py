@@ -33,6 +33,10 @@ from pathlib import Path
 
 _PACKAGE = Path(__file__).resolve().parent
 WARM_FILE = "warm"
+# environment variable naming a file: each compile is a line there (the compiled function's
+# name) instead of the compile notice (:class:`sandbox.jit.CompileNotice`); ``sandbox lessons``
+# sets it for each lesson, reports the count itself and keeps the lessons' pages clean
+COMPILE_LOG = "SANDBOX_COMPILE_LOG"
 
 
 def kernel_sources_hash() -> str:

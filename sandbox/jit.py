@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 import sys
 
-from sandbox.compile_cache import CACHE_FOLDER, take_cache_note
+from sandbox.compile_cache import CACHE_FOLDER, COMPILE_LOG, take_cache_note
 
 JIT_ENABLED: bool = os.environ.get("SANDBOX_JIT", "1") != "0"
 
@@ -42,7 +42,9 @@ if JIT_ENABLED:
         """While kernels compile (the first runs on a machine), a one-line notice, and on a
         terminal a progress bar, so a wait of tens of seconds is never silent (in a notebook
         either: its stderr is no terminal). Loading compiled kernels from the cache is no
-        compile event, so a warm run says nothing."""
+        compile event, so a warm run says nothing. With ``SANDBOX_COMPILE_LOG`` set (a file),
+        each compile is a line in that file instead, for the command that started this process
+        to report (``sandbox lessons``)."""
 
         # kernels compiled with each one-call step from an empty cache (the bar's length;
         # measured: the same for the bundled pyramid and for a world of every shape and joint)
@@ -52,8 +54,13 @@ if JIT_ENABLED:
             self.depth = 0
             self.bar = None
             self.told = False
+            self.log = os.environ.get(COMPILE_LOG) or None  # set: a line there, no notice
 
         def on_start(self, event) -> None:
+            if self.log is not None:
+                with open(self.log, "a", encoding="utf-8") as log:
+                    log.write(f"{compiled_name(event) or '?'}\n")
+                return
             if self.depth == 0 and not self.told:  # a notebook or a log gets the line too
                 print(
                     "note: compiling the engine for this machine, once (later runs load it; "
@@ -72,6 +79,8 @@ if JIT_ENABLED:
                 self.bar.update(1)
 
         def on_end(self, event) -> None:
+            if self.log is not None:
+                return
             self.depth -= 1
             if self.depth == 0 and self.bar is not None:
                 self.bar.close()

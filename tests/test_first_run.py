@@ -8,6 +8,7 @@ import os
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -245,20 +246,102 @@ def test_compiles_are_counted_while_listened_to():
     assert counted.count == (1 if jit.JIT_ENABLED else 0)
 
 
-def test_lessons_on_a_cold_cache_say_how_the_warmup_goes(monkeypatch):
-    # `sandbox lessons` compiles first, with the warmup's report (a bar on a terminal, a line
-    # per family elsewhere), not --quiet: a minute is never a silent wait
+def test_many_lessons_on_a_cold_cache_say_how_the_warmup_goes(monkeypatch, capsys):
+    # `sandbox lessons` for more than a lesson or two compiles first, with the warmup's report
+    # (a bar on a terminal, a line per family elsewhere), not --quiet: a minute is never a
+    # silent wait
     from sandbox.cli import lessons
 
     calls = []
     monkeypatch.delenv("SANDBOX_JIT", raising=False)
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
     monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
-    lessons._compile_first()
+    lessons._compile_first(lessons.FEW + 1)
     if compile_cache.CACHE_FOLDER is None:
         assert calls == []
         return
     assert calls == [[sys.executable, "-m", "sandbox", "warmup"]]
+    assert "compiling the engine for this machine first" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("chosen", [1, 2])
+def test_a_lesson_or_two_on_a_cold_cache_compile_what_they_need(monkeypatch, capsys, chosen):
+    # no warmup of every kernel first (65 s on two cores) for lesson 01, which needs 18 kernels
+    # (8.8 s from an empty cache, against 70 s with the warmup first); one line says so
+    from sandbox.cli import lessons
+
+    calls = []
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
+    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
+    lessons._compile_first(chosen)
+    assert calls == []
+    out = capsys.readouterr().out
+    if compile_cache.CACHE_FOLDER is not None:
+        assert out.startswith("the engine is not compiled for this machine yet: each lesson ")
+        assert out.count("\n") == 1
+
+
+def test_a_warm_cache_runs_the_lessons_at_once(monkeypatch, capsys):
+    from sandbox.cli import lessons
+
+    calls = []
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: True)
+    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
+    lessons._compile_first(19)
+    assert calls == [] and capsys.readouterr().out == ""
+
+
+def test_compiles_go_to_the_compile_log_instead_of_the_notice(tmp_path):
+    # with SANDBOX_COMPILE_LOG (set by `sandbox lessons` for each lesson) a compile is a line
+    # in that file, and nothing is printed: the lesson's page stays clean, the command counts
+    log = tmp_path / "lesson.compiles"
+    code = "from sandbox import jit\njit.njit(cache=False)(lambda x: x + 1)(1)\n"
+    env = {**os.environ, "SANDBOX_JIT": "1", compile_cache.COMPILE_LOG: str(log)}
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == "" and done.stdout == ""
+    assert log.read_text().splitlines() == ["<lambda>"]
+    env.pop(compile_cache.COMPILE_LOG)
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert "note: compiling the engine for this machine" in done.stderr  # without: the notice
+
+
+def test_a_lesson_run_counts_what_it_compiled(tmp_path):
+    from sandbox.course.catalogue import Lesson
+    from sandbox.course.runner import run_script
+
+    path = tmp_path / "lessons" / "99_compiles.py"
+    path.parent.mkdir()
+    path.write_text(
+        "from sandbox import jit\n"
+        "jit.njit(cache=False)(lambda x: x + 1)(1)\n"
+        "jit.njit(cache=False)(lambda x: x + 2)(1)\n"
+    )
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    outcome = run_script(Lesson(path), tmp_path / "out", logs)
+    assert outcome.ok, outcome.error
+    assert outcome.compiled == (0 if os.environ.get("SANDBOX_JIT") == "0" else 2)
+    assert run_script(Lesson(path), tmp_path / "out").compiled == 0  # no log: not counted
+
+
+def test_the_lesson_bar_moves_keeps_time_and_counts_kernels(monkeypatch):
+    from sandbox.cli.lessons import LessonBar
+    from sandbox.course.catalogue import Lesson
+    from sandbox.course.runner import Outcome
+
+    screen = Terminal()
+    monkeypatch.setattr(sys, "stdout", screen)
+    with LessonBar(2, lambda: "18 kernels compiled", tick=0.02) as bar:
+        bar.report(Outcome(Lesson(Path("01_projectile.py")), 8.1, compiled=18))
+        drawn = len(screen.getvalue())
+        time.sleep(0.2)  # redrawn by the ticker meanwhile, with no lesson done
+        assert len(screen.getvalue()) > drawn
+    text = screen.getvalue()
+    assert "== 01_projectile: ok in 8.1 s, compiled 18 kernels\n" in text
+    assert "1/2 lessons" in text and "18 kernels compiled]" in text
+    assert "lessons/s" not in text and "<" not in text  # no rate, no time left
 
 
 def test_the_warmup_in_a_log_says_no_compile_notice():

@@ -15,6 +15,7 @@ from sandbox.cli.common import CliError, field_type
 from sandbox.fieldspec import Field
 
 JOBS = Field("jobs", "integer", "lessons run at a time", None, "", lo=1, hi=64)
+FEW = 2  # lessons that compile what they need as they run, on a first run (no warmup first)
 
 
 def add_parser(sub) -> None:
@@ -88,7 +89,10 @@ def run(args: argparse.Namespace) -> int:
     notebooks = not args.scripts and not missing
     jobs = args.jobs or min(2, os.cpu_count() or 1)
     kind = "executed notebooks with HTML pages" if notebooks else "scripts"
-    print(f"writing {len(chosen)} lessons to {outputs} as {kind}, {jobs} at a time", flush=True)
+    jobs = min(jobs, len(chosen))
+    count = f"{len(chosen)} lesson" + ("s" if len(chosen) > 1 else "")
+    at_a_time = f", {jobs} at a time" if jobs > 1 else ""
+    print(f"writing {count} to {outputs} as {kind}{at_a_time}", flush=True)
     if missing:
         print(f"note: notebooks and HTML pages need {INSTALL_HINT} (missing: {', '.join(missing)})")
     outcomes = _run_all(chosen, outputs, notebooks, jobs)
@@ -105,11 +109,14 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _compile_first() -> None:
-    """On a machine where the engine was never compiled, compile every kernel once before the
-    lessons (``sandbox warmup``), rather than in the first lesson's kernel, saying how it goes
-    (a minute is never a silent wait): on a terminal the warmup's progress bar, elsewhere (a
-    log, an editor's console) a line per family of kernels ready."""
+def _compile_first(chosen: int) -> None:
+    """On a machine where the engine was never compiled: for more than :data:`FEW` lessons,
+    compile every kernel once before them (``sandbox warmup``: on a terminal its progress bar,
+    elsewhere a line per family of kernels ready), rather than in each lesson's process, the
+    same kernels at the same time. A lesson or two compile what they need themselves as they
+    run, which is sooner: the first lessons need a few kernels (01 to 03, 5 to 8 s each from an
+    empty cache) and the heaviest fewer than every kernel (06: 72 s, against 65 s of warmup
+    and then the lesson). Either way one line says so first."""
     import os
     import subprocess
 
@@ -117,39 +124,82 @@ def _compile_first() -> None:
 
     if os.environ.get("SANDBOX_JIT") == "0" or CACHE_FOLDER is None or is_warm():
         return
+    if chosen <= FEW:
+        print(
+            "the engine is not compiled for this machine yet: each lesson compiles what it "
+            "needs as it runs, once (`sandbox warmup` compiles everything ahead of a class)",
+            flush=True,
+        )
+        return
     print("compiling the engine for this machine first, once (one to two minutes)", flush=True)
     subprocess.run([sys.executable, "-m", "sandbox", "warmup"], check=False)
 
 
 def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
-    """Run the lessons, ``jobs`` at a time; one line per lesson, in course order.
+    """Run the lessons, ``jobs`` at a time; one line per lesson, in course order, saying how
+    many kernels it compiled if any; on a terminal, a progress bar over the lessons below them.
 
-    The engine is compiled first (:func:`_compile_first`), so that the lessons load its kernels
-    instead of each compiling them at the same time. The longest lessons start first (by the
-    size of their source), so that no core idles at the end waiting on one long lesson. Each
-    lesson writes only its own folder, so the outputs do not depend on ``jobs`` or the order.
+    The engine is compiled first where that is sooner (:func:`_compile_first`), so that the
+    lessons load its kernels instead of each compiling them at the same time. The longest
+    lessons start first (by the size of their source), so that no core idles at the end waiting
+    on one long lesson. Each lesson writes only its own folder, so the outputs do not depend on
+    ``jobs`` or the order. The kernels a lesson compiles are counted in a log
+    (:func:`sandbox.course.runner.compile_log`) rather than announced in its page.
     """
-    from sandbox.course.runner import Outcome, kernel_specs, run_notebook, run_script
+    from sandbox.course.runner import Outcome, compiled_in, kernel_specs, run_notebook, run_script
 
-    _compile_first()
+    _compile_first(len(chosen))
     with tempfile.TemporaryDirectory(prefix="sandbox-kernel-") as tmp:
         specs = kernel_specs(Path(tmp)) if notebooks else None
+        logs = Path(tmp) / "compiles"
+        logs.mkdir()
 
         def one(lesson) -> Outcome:
             try:
                 if specs is not None:
-                    return run_notebook(lesson, outputs, specs)
-                return run_script(lesson, outputs)
+                    return run_notebook(lesson, outputs, specs, logs)
+                return run_script(lesson, outputs, logs)
             except Exception as err:  # the runner's own failure: one line, the others go on
                 return Outcome(lesson, 0.0, f"{type(err).__name__}: {err}")
 
-        def report(outcome: Outcome) -> Outcome:
-            status = "ok" if outcome.ok else f"FAILED: {outcome.error}"
-            print(f"== {outcome.lesson.stem}: {status} in {outcome.seconds:.1f} s", flush=True)
-            return outcome
+        def compiled() -> str:
+            count = sum(compiled_in(log) for log in logs.glob("*.compiles"))
+            return f"{count} kernels compiled" if count else ""
 
         longest_first = sorted(chosen, key=lambda lesson: -lesson.path.stat().st_size)
-        with ThreadPoolExecutor(max_workers=jobs) as pool:
+        with LessonBar(len(chosen), compiled) as bar, ThreadPoolExecutor(jobs) as pool:
             running = {lesson.stem: pool.submit(one, lesson) for lesson in longest_first}
-            outcomes = [report(running[lesson.stem].result()) for lesson in chosen]
+            outcomes = [bar.report(running[lesson.stem].result()) for lesson in chosen]
     return outcomes
+
+
+class LessonBar:
+    """Where the lessons' lines go: printed as each is reported, and on a terminal above a
+    progress bar over the lessons (:class:`sandbox.cli.progress.TickingBar`) that shows the time
+    so far and, on a first run, how many kernels the lessons have compiled (``compiled()``)."""
+
+    def __init__(self, total: int, compiled, tick: float = 1.0) -> None:
+        self.bar = None
+        if sys.stdout.isatty():
+            from sandbox.cli.progress import TickingBar
+
+            self.bar = TickingBar(sys.stdout, total, "lessons", compiled, tick)
+
+    def report(self, outcome):
+        """The lesson's line (``== NN_name: ok in 4.2 s``), and the bar moved on."""
+        status = "ok" if outcome.ok else f"FAILED: {outcome.error}"
+        kernels = f", compiled {outcome.compiled} kernels" if outcome.compiled else ""
+        line = f"== {outcome.lesson.stem}: {status} in {outcome.seconds:.1f} s{kernels}"
+        if self.bar is None:
+            print(line, flush=True)
+        else:
+            self.bar.write(line)
+            self.bar.advance()
+        return outcome
+
+    def __enter__(self) -> LessonBar:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.bar is not None:
+            self.bar.__exit__(*exc)

@@ -77,49 +77,32 @@ def _print(line: str) -> None:
 
 
 class FamilyBar:
-    """A progress bar on ``screen`` (a terminal) over the families the warmup steps, moved by
-    each ``"  <family>: ready"`` line (:func:`sandbox.warmup.warm_up`'s report), with the time
-    so far, the last family ready and how many kernels this process has compiled, redrawn
-    every second: the first family alone compiles for most of a minute, and a bar that stood
-    still that long would look hung. No rate nor time left: the families take from under a
-    second to 40 s each."""
-
-    FORMAT = "{desc}{percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} families [{elapsed}{postfix}]"
+    """A progress bar on ``screen`` (a terminal) over the families the warmup steps
+    (:class:`sandbox.cli.progress.TickingBar`), moved by each ``"  <family>: ready"`` line
+    (:func:`sandbox.warmup.warm_up`'s report), showing the last family ready and how many
+    kernels this process has compiled: the first family alone compiles for most of a minute."""
 
     def __init__(self, screen, tick: float = 1.0) -> None:
-        import threading
-
-        from tqdm import tqdm
-
+        from sandbox.cli.progress import TickingBar
         from sandbox.jit import CompileCount
         from sandbox.warmup import worlds
 
         self.kernels = CompileCount()
         self.last = ""
         total = sum(1 for _ in worlds())
-        self.bar = tqdm(total=total, bar_format=self.FORMAT, leave=False, file=screen)
-        self.stop = threading.Event()
-        self.ticker = threading.Thread(target=self._tick, args=(tick,), daemon=True)
-        self.ticker.start()
+        self.bar = TickingBar(screen, total, "families", self._postfix, tick)
 
     def _postfix(self) -> str:
         compiled = f"{self.kernels.count} kernels compiled"
         return f"{self.last} ready, {compiled}" if self.last else compiled
 
-    def _tick(self, tick: float) -> None:
-        while not self.stop.wait(tick):
-            self.bar.set_postfix_str(self._postfix(), refresh=True)
-
     def ready(self, line: str) -> None:
         self.last = line.strip().removesuffix(": ready")
-        self.bar.set_postfix_str(self._postfix(), refresh=False)
-        self.bar.update(1)
+        self.bar.advance()
 
     def __enter__(self) -> FamilyBar:
         return self
 
     def __exit__(self, *exc: object) -> None:
-        self.stop.set()
-        self.ticker.join()
+        self.bar.__exit__(*exc)
         self.kernels.close()
-        self.bar.close()

@@ -14,6 +14,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from sandbox.compile_cache import COMPILE_LOG
 from sandbox.course.catalogue import Lesson
 from sandbox.course.page import WIDGET_VIEW
 
@@ -31,6 +32,7 @@ class Outcome:
     seconds: float
     error: str = ""
     written: list[Path] = field(default_factory=list)  # the notebook and its page, if made
+    compiled: int = 0  # kernels the lesson compiled (counted when run with a compile log)
 
     @property
     def ok(self) -> bool:
@@ -42,12 +44,34 @@ def missing_notebook_tools() -> list[str]:
     return [name for name in NOTEBOOK_TOOLS if importlib.util.find_spec(name) is None]
 
 
-def lesson_env(outputs: Path) -> dict[str, str]:
-    """Environment of a lesson's process: where to write, Agg, no stray warnings."""
+def lesson_env(outputs: Path, log: Path | None = None) -> dict[str, str]:
+    """Environment of a lesson's process: where to write, Agg, no stray warnings; with ``log``,
+    each kernel the lesson compiles is a line in that file rather than a notice in its output
+    (:data:`sandbox.compile_cache.COMPILE_LOG`; :func:`compiled_in` counts them)."""
     env = {**os.environ, "SANDBOX_OUTPUTS": str(outputs), "MPLBACKEND": "Agg"}
     env["PYDEVD_DISABLE_FILE_VALIDATION"] = "1"  # the kernel's debugger warns on stderr otherwise
     env["JUPYTER_PLATFORM_DIRS"] = "1"
+    env.pop(COMPILE_LOG, None)
+    if log is not None:
+        env[COMPILE_LOG] = str(log)
     return env
+
+
+def compile_log(logs: Path | None, lesson: Lesson) -> Path | None:
+    """The file in the folder ``logs`` where the lesson's compiles are written (emptied), or
+    None without a folder."""
+    if logs is None:
+        return None
+    log = logs / f"{lesson.stem}.compiles"
+    log.unlink(missing_ok=True)
+    return log
+
+
+def compiled_in(log: Path | None) -> int:
+    """How many kernels were compiled into ``log`` (0 without one)."""
+    if log is None or not log.exists():
+        return 0
+    return len(log.read_text(encoding="utf-8").splitlines())
 
 
 def clear_folder(folder: Path) -> None:
@@ -61,17 +85,19 @@ def clear_folder(folder: Path) -> None:
             path.rmdir()
 
 
-def run_script(lesson: Lesson, outputs: Path) -> Outcome:
+def run_script(lesson: Lesson, outputs: Path, logs: Path | None = None) -> Outcome:
     """Run the lesson as ``python NN_name.py``; its printed output is kept from the console
-    (the tables are in ``tables.md``) and shown only when it fails."""
+    (the tables are in ``tables.md``) and shown only when it fails. With ``logs`` (a folder),
+    the kernels it compiles are counted there (:func:`compile_log`), not announced."""
     folder = outputs / lesson.stem
     clear_folder(folder)
     folder.mkdir(parents=True, exist_ok=True)
+    log = compile_log(logs, lesson)
     start = time.perf_counter()
     result = subprocess.run(
         [sys.executable, str(lesson.path)],
         cwd=folder,
-        env=lesson_env(outputs),
+        env=lesson_env(outputs, log),
         capture_output=True,
         text=True,
     )
@@ -79,7 +105,7 @@ def run_script(lesson: Lesson, outputs: Path) -> Outcome:
     if result.returncode:
         tail = (result.stderr or result.stdout).strip().splitlines()
         error = f"exit status {result.returncode}: {tail[-1] if tail else 'no output'}"
-    return Outcome(lesson, time.perf_counter() - start, error)
+    return Outcome(lesson, time.perf_counter() - start, error, compiled=compiled_in(log))
 
 
 def kernel_specs(folder: Path) -> Path:
@@ -96,11 +122,13 @@ def kernel_specs(folder: Path) -> Path:
     return specs
 
 
-def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
+def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None = None) -> Outcome:
     """Execute the lesson as a notebook and write ``NN_name.ipynb`` and ``NN_name.html``.
 
     ``specs`` is the folder of :func:`kernel_specs`. A failing cell stops the run; the notebook
-    and page are still written, showing the error where it happened.
+    and page are still written, showing the error where it happened. With ``logs`` (a folder),
+    the kernels it compiles are counted there (:func:`compile_log`), and no compile notice
+    lands in the notebook.
     """
     import jupytext
     import nbclient
@@ -114,6 +142,7 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
     folder = outputs / lesson.stem
     clear_folder(folder)
     folder.mkdir(parents=True, exist_ok=True)
+    log = compile_log(logs, lesson)
     start = time.perf_counter()
     nb = jupytext.read(lesson.path)
     nb.metadata.pop("jupytext", None)
@@ -140,7 +169,7 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
     )
     error = ""
     try:
-        client.execute(env=lesson_env(outputs))
+        client.execute(env=lesson_env(outputs, log))
     except nbclient.exceptions.CellExecutionError as err:
         error = _cell_error(err)
     except Exception as err:  # a kernel that died or timed out
@@ -161,7 +190,7 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path) -> Outcome:
         written.append(page)
     except Exception as err:  # the notebook is written; say why its page is not
         error = error or f"HTML page: {type(err).__name__}: {' '.join(str(err).split())[:300]}"
-    return Outcome(lesson, time.perf_counter() - start, error, written)
+    return Outcome(lesson, time.perf_counter() - start, error, written, compiled_in(log))
 
 
 def settle(nb) -> None:
