@@ -326,7 +326,8 @@ def solve(contacts, k: int, joints, bodies, context) -> None:
     if ctx["accumulate"]:
         coloured_sweeps(contacts, k, joints, bodies, n)
     else:
-        sweeps(contacts, k, joints, bodies, False, n)
+        # False, read rather than written: a constant argument compiles a version of its own
+        sweeps(contacts, k, joints, bodies, ctx["accumulate"], n)
     if k == 0 or not large_step(context):
         return
     tolerance = RESIDUAL * ctx["slop"] * ctx["inv_dt"]  # m/s
