@@ -169,6 +169,80 @@ def test_the_plain_python_note_ends_cleanly_without_a_background_warmup(monkeypa
     assert notes == ["the engine is not compiled for this machine yet: this run is plain Python"]
 
 
+def test_a_background_warmup_locks_the_cache_with_its_own_process_id(tmp_path, monkeypatch):
+    started = []
+
+    class Warmup:
+        pid = 4242
+
+        def __init__(self, args, **kw):
+            started.append(args)
+
+    monkeypatch.delenv("SANDBOX_WARMUP", raising=False)
+    monkeypatch.setattr(subprocess, "Popen", Warmup)
+    assert first_run.start_background_warmup(tmp_path)
+    assert started == [[sys.executable, "-m", "sandbox", "warmup", "--quiet"]]
+    assert (tmp_path / first_run.LOCK).read_text() == "4242"
+    assert first_run.start_background_warmup(tmp_path)  # one at a time: the lock is fresh
+    assert len(started) == 1
+
+
+@pytest.mark.skipif(os.name != "posix", reason="no waiting for a warmup off POSIX")
+def test_a_running_warmup_is_one_whose_lock_is_fresh_and_process_alive(tmp_path):
+    lock = tmp_path / first_run.LOCK
+    assert first_run.running_warmup(tmp_path) is None  # no lock
+    assert first_run.running_warmup(None) is None  # no cache
+    lock.write_text(str(os.getpid()))
+    assert first_run.running_warmup(tmp_path) == os.getpid()
+    old = time.time() - first_run.STALE - 1
+    os.utime(lock, (old, old))
+    assert first_run.running_warmup(tmp_path) is None  # stale: a warmup that died
+    ended = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    )
+    lock.write_text(ended.stdout.strip())
+    assert first_run.running_warmup(tmp_path) is None  # its process is gone
+    lock.write_text("not a number")
+    assert first_run.running_warmup(tmp_path) is None
+
+
+@pytest.mark.skipif(os.name != "posix", reason="no waiting for a warmup off POSIX")
+def test_a_second_run_waits_for_the_background_warmup(tmp_path, capsys):
+    # `sandbox lessons` (several) or `sandbox warmup` after `sandbox lessons 01` started a
+    # background warmup: wait for it to end, rather than compile the same kernels beside it
+    assert first_run.wait_for_warmup(tmp_path, poll=0.01) is False
+    assert capsys.readouterr().out == ""
+    warmup = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(0.6)"])
+    (tmp_path / first_run.LOCK).write_text(str(warmup.pid))
+    start = time.monotonic()
+    try:
+        waited = first_run.wait_for_warmup(tmp_path, poll=0.01)
+    finally:
+        warmup.wait()
+    assert waited and time.monotonic() - start > 0.3
+    out = capsys.readouterr().out
+    assert out.startswith("the engine is compiling in the background") and out.count("\n") == 1
+
+
+def test_lessons_after_a_background_warmup_do_not_warm_up_again(monkeypatch, capsys):
+    from sandbox.cli import lessons
+
+    calls, warm = [], [False]
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: warm[0])
+    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
+    monkeypatch.setattr(
+        first_run, "wait_for_warmup", lambda folder: warm.__setitem__(0, True) or True
+    )
+    lessons._compile_first(lessons.FEW + 1)
+    assert calls == []  # it waited, and the cache is warm now
+    warm[0] = False
+    monkeypatch.setattr(first_run, "wait_for_warmup", lambda folder: True)  # it ended unwarm
+    lessons._compile_first(lessons.FEW + 1)
+    if compile_cache.CACHE_FOLDER is not None:
+        assert calls == [[sys.executable, "-m", "sandbox", "warmup"]]
+
+
 def test_the_warmup_shares_cover_every_family_once():
     from sandbox.warmup import FIRST_SHARE, SECOND_SHARE_FIRST, part, worlds
 

@@ -83,7 +83,7 @@ def start_background_warmup(folder) -> bool:
         return False
     env = {**os.environ, "SANDBOX_JIT": "1"}
     try:
-        subprocess.Popen(
+        warmup = subprocess.Popen(
             [sys.executable, "-m", "sandbox", "warmup", "--quiet"],
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
@@ -92,8 +92,62 @@ def start_background_warmup(folder) -> bool:
             start_new_session=True,
             preexec_fn=_lower_priority if hasattr(os, "nice") else None,
         )
+        lock.write_text(str(warmup.pid))  # whose lock: running_warmup() asks if it still runs
     except OSError:
         return False
+    return True
+
+
+def running_warmup(folder) -> int | None:
+    """The process id of a background warmup compiling into ``folder`` now (its lock is
+    there, younger than :data:`STALE`, and its process alive), or None. (None on Windows,
+    where asking whether a process lives would end it: nothing waits for a warmup there.)"""
+    if folder is None or os.name != "posix":
+        return None
+    lock = folder / LOCK
+    try:
+        if time.time() - lock.stat().st_mtime >= STALE:
+            return None
+        pid = int(lock.read_text())
+    except (OSError, ValueError):
+        return None
+    try:
+        if os.waitpid(pid, os.WNOHANG)[0] == pid:  # this process started it, and it ended
+            return None
+    except OSError:  # not a child of this process (ChildProcessError): os.kill tells
+        pass
+    try:
+        os.kill(pid, 0)  # no signal: whether the process exists
+    except ProcessLookupError:
+        return None
+    except PermissionError:  # it exists, another user's
+        pass
+    return pid
+
+
+def wait_for_warmup(folder, poll: float = 0.5) -> bool:
+    """If a background warmup (started by an earlier run) is compiling into ``folder``, wait
+    for it to end rather than compile the same kernels beside it, saying so in one line (on
+    a terminal with the time so far, redrawn every second). Returns whether it waited."""
+    if running_warmup(folder) is None:
+        return False
+    print(
+        "the engine is compiling in the background (an earlier run started it): waiting for it",
+        flush=True,
+    )
+    clock = None
+    if sys.stdout.isatty():
+        from tqdm import tqdm
+
+        clock = tqdm(bar_format="waiting [{elapsed}]", leave=False, file=sys.stdout)
+    last = time.monotonic()
+    while running_warmup(folder) is not None:
+        time.sleep(poll)
+        if clock is not None and time.monotonic() - last >= 1.0:
+            clock.refresh()
+            last = time.monotonic()
+    if clock is not None:
+        clock.close()
     return True
 
 

@@ -62,6 +62,10 @@ def run(args: argparse.Namespace) -> int:
     if args.quiet:
         warm_up(lambda line: None, args.jobs)
         return 0
+    from sandbox.cli.first_run import wait_for_warmup
+    from sandbox.compile_cache import CACHE_FOLDER
+
+    wait_for_warmup(CACHE_FOLDER)  # then this one loads what it compiled
     print(f"compiling the engine into {where()}", flush=True)
     if sys.stderr.isatty():
         with FamilyBar(sys.stderr) as bar:
