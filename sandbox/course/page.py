@@ -69,8 +69,9 @@ def render_page(nb, folder: Path, title: str, nav: dict[str, str] | None = None)
     ``nav`` maps link texts to relative addresses for the bar at the top of the page.
     """
     from jinja2 import DictLoader
-    from nbconvert import HTMLExporter
     from traitlets.config import Config
+
+    from sandbox.course.exporter import LessonPageExporter
 
     nb = copy.deepcopy(nb)
     nb.metadata.pop("widgets", None)
@@ -81,7 +82,7 @@ def render_page(nb, folder: Path, title: str, nav: dict[str, str] | None = None)
             cell.source, _ = protect_math(cell.source, fragments)
         for output in cell.get("outputs", []):
             _offline_output(output, folder)
-    exporter = HTMLExporter(
+    exporter = LessonPageExporter(
         config=Config({"NbConvertBase": {"display_data_priority": PRIORITY}}),
         template_name="lab",
         extra_loaders=[DictLoader({"sandbox_page.html.j2": TEMPLATE})],
