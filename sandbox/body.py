@@ -100,7 +100,9 @@ class Body:
         """Mass (kg), centre of mass (body frame, m) and moment about it (kg m^2)."""
         from sandbox.mass import MassProperties, combine
 
-        if self.shapes:
+        if len(self.shapes) == 1:  # one shape: its own mass properties
+            props = self.shapes[0].mass_properties()
+        elif self.shapes:
             props = combine([s.mass_properties() for s in self.shapes])
         else:
             props = MassProperties(0.0, np.zeros(2), 0.0, 0.0)

@@ -136,6 +136,13 @@ class Box(Polygon):
         Shape.__init__(self, **_material_of(values))  # the corners need no convexity check
         self.vertices = geometry.box_vertices(self.width, self.height, self.offset, self.angle)
 
+    def mass_properties(self):
+        from sandbox.mass import box_mass_properties
+
+        return box_mass_properties(
+            self.width, self.height, self.density, self.offset, self.angle, mass=self.mass
+        )
+
     def to_dict(self) -> dict:
         return {
             "type": "box",

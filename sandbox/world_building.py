@@ -119,7 +119,7 @@ class Building:
             row["inv_mass"] = row["inv_moment"] = 0.0
         self._geometry = None
         self._dirty = True
-        self._state_changed()
+        self._state_changed(i)  # this body's island wakes
 
     def _controllers_changed(self) -> None:
         self._controlled = [b for b in self.bodies if b.controller is not None]

@@ -252,3 +252,20 @@ def test_polygon_split_in_two_combines_to_the_whole(
     assume(min(h.area for h in halves) > 1e-3 * whole.area)
     size = float(np.max(np.ptp(poly, axis=0))) + float(np.abs(shift).max())
     same_props(combine(halves), whole, rel=1e-9, size=size)
+
+
+def test_a_box_shape_and_a_body_of_one_shape_take_the_closed_forms():
+    # a Box's mass properties are the rectangle's closed form (not its polygon's fan), and a
+    # body of one shape has exactly that shape's: nothing recombined
+    from sandbox import Body, Box
+
+    box = Box(2.0, 0.5, offset=(1.0, -2.0), angle=0.7, density=4.0)
+    closed = box_mass_properties(2.0, 0.5, 4.0, offset=(1.0, -2.0), angle=0.7)
+    got = box.mass_properties()
+    assert (got.mass, got.moment, got.area) == (closed.mass, closed.moment, closed.area)
+    np.testing.assert_array_equal(got.centroid, closed.centroid)
+    body = Body("b")
+    body.add_shape(box)
+    mass, centroid, moment = body.mass_properties()
+    assert (mass, moment) == (closed.mass, closed.moment)
+    np.testing.assert_array_equal(centroid, closed.centroid)

@@ -209,3 +209,20 @@ def test_after_adding_a_body_everything_sleeps_again():
     assert not world.sleeping.any()
     run(world, 4.0)
     assert world.sleeping.sum() == SLEEPERS + 1
+
+
+def test_a_new_shape_wakes_its_own_island_only():
+    """A body's mass changes with a new shape: its island wakes, the other pile sleeps on."""
+    far = [
+        {
+            "name": "far",
+            "position": [15.0, 0.5],
+            "shapes": [{"type": "box", "width": 1.0, "height": 1.0}],
+        }
+    ]
+    world = pyramid(extra=far)
+    run(world, 3.0)
+    assert world.sleeping.sum() == SLEEPERS + 1
+    world.body("far").add_shape(Circle(0.2, offset=(0.0, 0.7)))
+    assert world.sleeping.sum() == SLEEPERS
+    assert not world.sleeping[world.body("far").index]
