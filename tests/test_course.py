@@ -240,6 +240,35 @@ def test_formulas_become_mathml_outside_code():
     )
 
 
+@pytest.mark.parametrize("fallback", [False, True], ids=["own", "nbconverts"])
+def test_a_page_is_nbconverts_page_without_its_sanitizer_and_reparse(tmp_path, fallback):
+    # sandbox.course.exporter: the page of a notebook with code, printed text, an error and a
+    # figure is nbconvert's own once both are read as HTML, focusable areas included; with an
+    # nbconvert whose pieces moved (fallback) it is nbconvert's export itself
+    pytest.importorskip("nbconvert")
+    import nbformat
+    from bs4 import BeautifulSoup
+    from nbconvert import HTMLExporter
+
+    from sandbox.course import exporter
+
+    nb = nbformat.v4.new_notebook()
+    code = nbformat.v4.new_code_cell("for i in range(2):\n    print('<b>', i)  # a < b")
+    code.outputs = [
+        nbformat.v4.new_output("stream", name="stdout", text="<b> 0\n<b> 1\n"),
+        nbformat.v4.new_output("display_data", data={"image/png": "iVBORw0KGgo="}),
+        nbformat.v4.new_output("error", ename="ValueError", evalue="x < 0", traceback=["t"]),
+    ]
+    nb.cells = [nbformat.v4.new_markdown_cell("# Title\n\nSome *text* & a [link](a.html)."), code]
+    with pytest.MonkeyPatch.context() as patch:
+        if fallback:
+            patch.setattr(exporter, "WidgetsDataTypeFilter", None)
+        ours, _ = exporter.LessonPageExporter(template_name="lab").from_notebook_node(nb)
+    theirs, _ = HTMLExporter(template_name="lab").from_notebook_node(nb)
+    assert ours.count('tabindex="0"') == theirs.count('tabindex="0"') >= 3
+    assert (ours if fallback else str(BeautifulSoup(ours, "html.parser"))) == theirs
+
+
 def test_link_check_finds_missing_files_and_network_loads(tmp_path):
     (tmp_path / "ok.png").write_bytes(b"x")
     page = tmp_path / "p.html"
