@@ -152,16 +152,16 @@ def test_a_change_wakes_the_island(change):
     assert world.context[0]["awake"] == SLEEPERS
 
 
+FAR = {  # a box 15 m from the pyramid: an island of its own
+    "name": "far",
+    "position": [15.0, 0.5],
+    "shapes": [{"type": "box", "width": 1.0, "height": 1.0}],
+}
+
+
 def test_islands_are_separate():
     """Two piles 20 m apart: waking one leaves the other asleep."""
-    far = [
-        {
-            "name": "far",
-            "position": [15.0, 0.5],
-            "shapes": [{"type": "box", "width": 1.0, "height": 1.0}],
-        }
-    ]
-    world = pyramid(extra=far)
+    world = pyramid(extra=[FAR])
     run(world, 3.0)
     assert world.sleeping.sum() == SLEEPERS + 1
     world.body("far").apply_impulse((0.0, 2.0))
@@ -213,14 +213,7 @@ def test_after_adding_a_body_everything_sleeps_again():
 
 def test_a_new_shape_wakes_its_own_island_only():
     """A body's mass changes with a new shape: its island wakes, the other pile sleeps on."""
-    far = [
-        {
-            "name": "far",
-            "position": [15.0, 0.5],
-            "shapes": [{"type": "box", "width": 1.0, "height": 1.0}],
-        }
-    ]
-    world = pyramid(extra=far)
+    world = pyramid(extra=[FAR])
     run(world, 3.0)
     assert world.sleeping.sum() == SLEEPERS + 1
     world.body("far").add_shape(Circle(0.2, offset=(0.0, 0.7)))
