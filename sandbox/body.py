@@ -100,9 +100,7 @@ class Body:
         """Mass (kg), centre of mass (body frame, m) and moment about it (kg m^2)."""
         from sandbox.mass import MassProperties, combine
 
-        if len(self.shapes) == 1:  # one shape: its own mass properties
-            props = self.shapes[0].mass_properties()
-        elif self.shapes:
+        if self.shapes:
             props = combine([s.mass_properties() for s in self.shapes])
         else:
             props = MassProperties(0.0, np.zeros(2), 0.0, 0.0)

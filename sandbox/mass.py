@@ -245,6 +245,8 @@ def combine(parts: Iterable[MassProperties]) -> MassProperties:
     parts = list(parts)
     if not parts:
         raise ValueError("combine needs at least one part")
+    if len(parts) == 1:  # one part is the body: its centroid exactly, not m c / m rounded
+        return parts[0]
     masses = np.array([p.mass for p in parts])
     centroids = np.array([p.centroid for p in parts])
     # slides, "Centre of Mass": c = sum m_k c_k / sum m_k

@@ -256,7 +256,7 @@ def test_polygon_split_in_two_combines_to_the_whole(
 
 def test_a_box_shape_and_a_body_of_one_shape_take_the_closed_forms():
     # a Box's mass properties are the rectangle's closed form (not its polygon's fan), and a
-    # body of one shape has exactly that shape's: nothing recombined
+    # body of one shape has exactly that shape's: combining one part changes nothing
     from sandbox import Body, Box
 
     box = Box(2.0, 0.5, offset=(1.0, -2.0), angle=0.7, density=4.0)
@@ -264,6 +264,10 @@ def test_a_box_shape_and_a_body_of_one_shape_take_the_closed_forms():
     got = box.mass_properties()
     assert (got.mass, got.moment, got.area) == (closed.mass, closed.moment, closed.area)
     np.testing.assert_array_equal(got.centroid, closed.centroid)
+    # one part combined is that part: the centroid exactly (m c / m can round it off)
+    alone = combine([got])
+    assert (alone.mass, alone.moment, alone.area) == (closed.mass, closed.moment, closed.area)
+    np.testing.assert_array_equal(alone.centroid, closed.centroid)
     body = Body("b")
     body.add_shape(box)
     mass, centroid, moment = body.mass_properties()
