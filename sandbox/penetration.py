@@ -59,7 +59,7 @@ def separation(c, p, bodies) -> tuple[float, float, float, float, float]:
         p["local_a"],
         p["local_b"],
         c["normal"],
-        p["depth"],
+        p["anchor_depth"],
     )
 
 
@@ -260,7 +260,12 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
             continue
         for j in range(c["count"]):
             p = c["points"][j]
-            point = (p["local_a"], p["local_b"], p["depth"], allowed_separation(c, p, slop, push))
+            point = (
+                p["local_a"],
+                p["local_b"],
+                p["anchor_depth"],
+                allowed_separation(c, p, slop, push),
+            )
             pose_a, pose_b, sep, pushed = push_point(
                 pose_of(a), pose_of(b), mass, (nx, ny), point, beta
             )

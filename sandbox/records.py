@@ -107,13 +107,15 @@ CONTACT_POINT = np.dtype(
         ("point", V2),  # world point midway between the surfaces, at detection (m)
         ("depth", F8),  # penetration at detection (m): > 0 overlapping, < 0 a gap
         ("feature", I8),  # which features touch; stays the same while they do (warm starting)
-        ("local_a", V2),  # the point in a's body frame, about its centre of mass (m)
+        ("local_a", V2),  # the point a's separation follows, a's body frame about its centre
+        # of mass (m): the contact point, or a circle's centre (a circle turns under its contact)
         ("local_b", V2),  # likewise in b's
+        ("anchor_depth", F8),  # the depth measured between those two (m): depth, plus how far
+        # the point lies out from each circle's centre along the normal
         ("approach_speed", F8),  # v_r . n when the step began, before gravity (m/s)
-        ("base_separation", F8),  # soft step: -depth - (r_b - r_a) . n, for the separation now
+        ("base_separation", F8),  # soft step: -depth - (r_b - r_a) . n, r the arms of local_a
+        # and local_b: for the separation now
         ("separation", F8),  # soft step: the separation at the bodies' latest poses (m)
-        ("anchor_a", V2),  # soft step: the point a's separation follows, a's body frame (m):
-        ("anchor_b", V2),  # local_a, or a circle's centre (a circle turns under its contact)
         ("bounce_impulse", F8),  # what the passes after the sweeps added (N s), not warm-started
         ("bounce_tangent", F8),  # and their friction (N s, the shock pass's), not warm-started
     ],

@@ -180,11 +180,11 @@ def boxes_hold(shapes, vertices, bodies, reach, proxies) -> bool:
 
 
 @njit
-def prepare(contacts, k: int, previous, bodies, context, block: bool = True) -> None:
+def prepare(contacts, k: int, previous, shapes, bodies, context, block: bool = True) -> None:
     """Stage 3: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
     unless ``block`` is False: the soft step has none), then the warm-start impulses."""
     ctx = context[0]
-    prepare_contacts(contacts, k, bodies, 0.0, context, block)
+    prepare_contacts(contacts, k, shapes, bodies, 0.0, context, block)
     found = 0
     if ctx["warm_start"]:
         found = match_previous(contacts, k, previous, ctx["contact_count"][ctx["contact_set"]])
@@ -284,7 +284,7 @@ def fast_step(
     k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
     if k < 0:
         return k
-    prepare(contacts, k, previous, bodies, context)
+    prepare(contacts, k, previous, shapes, bodies, context)
     gather_forces(bodies)
     integrate_velocities(model, context, ctx["dt"], work)
     prepare_joints(joints, bodies, context)
@@ -333,7 +333,7 @@ def begin_soft(contacts, k: int, previous, model, context) -> None:
     bodies, shapes, joints = model[0], model[1], model[3]
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
-    prepare(contacts, k, previous, bodies, context, False)
+    prepare(contacts, k, previous, shapes, bodies, context, False)
     ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(contacts, k, bodies, context)
@@ -462,7 +462,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         clock.lap("collide")
     if world.settings.solver == "soft":
         return staged_soft(world, (contacts, k, previous), a, clock)
-    prepare(contacts, k, previous, a.bodies, a.context)
+    prepare(contacts, k, previous, a.shapes, a.bodies, a.context)
     clock.lap("prepare_contacts")
     gather_forces(a.bodies)
     integrate_velocities(model, a.context, ctx["dt"], a.work)

@@ -22,6 +22,7 @@ def sunk(contacts, bodies):
     """The same contacts 2 cm deeper than they were found, so that the passes push."""
     contacts = contacts.copy()
     contacts["points"]["depth"] += 0.02
+    contacts["points"]["anchor_depth"] += 0.02
     return contacts, bodies
 
 
@@ -42,8 +43,9 @@ def test_wide_passes_equal_the_record_passes_bit_for_bit(case, depth):
     for field in ("com", "cs", "turn"):
         assert np.array_equal(wide_b[field], record_b[field]), field
     moved = np.abs(wide_b["com"] - bodies["com"]).max()
-    if depth != "as found":
-        assert moved > 1e-3 and np.abs(wide_b["turn"]).max() > 0.0  # they pushed and turned
+    if depth != "as found":  # they pushed, and turned the boxes; a disc follows its centre
+        turned = np.abs(wide_b["turn"]).max()
+        assert moved > 1e-3 and (turned > 0.0 if (contacts["count"] == 2).any() else turned == 0)
 
 
 @pytest.mark.parametrize("case", CASES)

@@ -87,27 +87,21 @@ def with_fixed(c) -> bool:
 
 
 @njit(inline="always")
-def anchor(shape, body, local, point):
-    """The point that a contact point's separation follows on one side: in that body's frame
-    about its centre of mass (m), and where it is now relative to the centre of mass, in the
-    world (m). On a polygon it is the contact point itself (``local``: ``local_a`` or
-    ``local_b``; ``point``, where the narrowphase found it), fixed to the body; on a circle it
-    is the circle's centre: the surface point facing the normal is the centre less the radius
-    along it however the circle turns, where a spinning ball's material point would swing off
-    the contact by r (1 - cos dphi) (a 5 cm bullet sliding down a wall at 330 rad/s: 3 cm into
-    the wall)."""
+def anchor_arm(shape, body, point):
+    """Where the point a contact point's separation follows on one side
+    (:func:`sandbox.solvers.common.anchor`: ``local_a`` or ``local_b``) is now, relative to
+    the body's centre of mass, in the world (m): the contact point (``point``, where the
+    narrowphase found it), or a circle's centre."""
     if shape["kind"] == CIRCLE:
         centre = shape["center"]
-        x, y = rotate(body["cs"][0], body["cs"][1], centre[0], centre[1])
-        return centre[0], centre[1], x, y
-    return local[0], local[1], point[0] - body["com"][0], point[1] - body["com"][1]
+        return rotate(body["cs"][0], body["cs"][1], centre[0], centre[1])
+    return point[0] - body["com"][0], point[1] - body["com"][1]
 
 
 @njit
 def prepare_soft(contacts, k: int, shapes, bodies, context) -> None:
     """The soft step's additions to :func:`sandbox.solvers.common.prepare_contacts`: each
-    point's anchors (:func:`anchor`) and base separation s0 - (r_b - r_a) . n, r the anchors'
-    arms now, and each contact's softness (twice the stiffness against a body that cannot
+    point's base separation s0 - (r_b - r_a) . n, r the anchors' arms now (:func:`anchor_arm`), and each contact's softness (twice the stiffness against a body that cannot
     move). No stiffer than an eighth of the substep rate
     (MAX_CONTACT_HERTZ_PER_RATE, as Box2D since v3.1): at a quarter (Box2D v3.0) a pyramid of 40
     boxes rings forever, its top box swinging between 15 mm up and 69 mm down (Box2D's own solver
@@ -127,10 +121,8 @@ def prepare_soft(contacts, k: int, shapes, bodies, context) -> None:
         body_a, body_b = bodies[c["a"]], bodies[c["b"]]
         for j in range(c["count"]):
             p = c["points"][j]
-            ax, ay, rax, ray = anchor(shape_a, body_a, p["local_a"], p["point"])
-            bx, by, rbx, rby = anchor(shape_b, body_b, p["local_b"], p["point"])
-            p["anchor_a"][0], p["anchor_a"][1] = ax, ay
-            p["anchor_b"][0], p["anchor_b"][1] = bx, by
+            rax, ray = anchor_arm(shape_a, body_a, p["point"])
+            rbx, rby = anchor_arm(shape_b, body_b, p["point"])
             p["base_separation"] = -p["depth"] - ((rbx - rax) * nx + (rby - ray) * ny)
             p["separation"] = separation_now(c, p, bodies)  # what the first solve pass needs
 
@@ -213,10 +205,10 @@ def rising(lower, normal, lower_is_a: bool) -> float:
 def separation_now(c, p, bodies) -> float:
     """The point's separation after the bodies' moves this step (m, < 0 overlapping):
     s = s_base + ((dp_b - dp_a) + R_b l_b - R_a l_a) . n, the normal held fixed, l the
-    anchors (:func:`anchor`)."""
+    anchors (``local_a``, ``local_b``: :func:`sandbox.solvers.common.anchor`)."""
     a, b = bodies[c["a"]], bodies[c["b"]]
-    rax, ray = rotate(a["cs"][0], a["cs"][1], p["anchor_a"][0], p["anchor_a"][1])
-    rbx, rby = rotate(b["cs"][0], b["cs"][1], p["anchor_b"][0], p["anchor_b"][1])
+    rax, ray = rotate(a["cs"][0], a["cs"][1], p["local_a"][0], p["local_a"][1])
+    rbx, rby = rotate(b["cs"][0], b["cs"][1], p["local_b"][0], p["local_b"][1])
     dx = b["delta_position"][0] - a["delta_position"][0] + rbx - rax
     dy = b["delta_position"][1] - a["delta_position"][1] + rby - ray
     return p["base_separation"] + dx * c["normal"][0] + dy * c["normal"][1]

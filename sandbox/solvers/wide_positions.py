@@ -124,12 +124,12 @@ def pack(contacts, bodies, lanes, owners, blocks: int, bounds) -> None:
         p, base = c["points"][0], i + P0
         lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
         lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
-        lanes[base + DEPTH] = p["depth"]
+        lanes[base + DEPTH] = p["anchor_depth"]
         lanes[base + ALLOWED] = allowed_separation(c, p, slop, push)
         p, base = c["points"][1], i + P1
         lanes[base + LAX], lanes[base + LAY] = p["local_a"][0], p["local_a"][1]
         lanes[base + LBX], lanes[base + LBY] = p["local_b"][0], p["local_b"][1]
-        lanes[base + DEPTH] = p["depth"]
+        lanes[base + DEPTH] = p["anchor_depth"]
         lanes[base + ALLOWED] = allowed_separation(c, p, slop, push)
 
 
