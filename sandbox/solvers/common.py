@@ -95,13 +95,15 @@ def anchor(shape, cs, local, rx: float, ry: float, nx: float, ny: float) -> floa
     normal however the circle turns, where a spinning ball's material point would swing off the
     contact by r (1 - cos dphi) (a 5 cm bullet sliding down a wall at 330 rad/s: 3 cm into the
     wall), and the position passes would turn the ball for nothing. Returns that reach (m)."""
-    if shape["kind"] == CIRCLE:
-        centre = shape["center"]
-        local[0], local[1] = centre[0], centre[1]
-        cx, cy = rotate(cs[0], cs[1], centre[0], centre[1])
-        return (rx - cx) * nx + (ry - cy) * ny
-    local[0], local[1] = unrotate(cs[0], cs[1], rx, ry)
-    return 0.0
+    # both worked out and one kept (selects, not branches: discs against discs and against
+    # walls alternate unpredictably)
+    round_ = shape["kind"] == CIRCLE
+    centre = shape["center"]
+    ux, uy = unrotate(cs[0], cs[1], rx, ry)
+    cx, cy = rotate(cs[0], cs[1], centre[0], centre[1])
+    local[0] = centre[0] if round_ else ux
+    local[1] = centre[1] if round_ else uy
+    return (rx - cx) * nx + (ry - cy) * ny if round_ else 0.0
 
 
 @njit
