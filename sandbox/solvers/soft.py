@@ -101,8 +101,9 @@ def anchor_arm(shape, body, point):
 @njit
 def prepare_soft(contacts, k: int, shapes, bodies, context) -> None:
     """The soft step's additions to :func:`sandbox.solvers.common.prepare_contacts`: each
-    point's base separation s0 - (r_b - r_a) . n, r the anchors' arms now (:func:`anchor_arm`), and each contact's softness (twice the stiffness against a body that cannot
-    move). No stiffer than an eighth of the substep rate
+    point's base separation s0 - (r_b - r_a) . n, r the anchors' arms now (:func:`anchor_arm`),
+    and each contact's softness (twice the stiffness against a body that cannot move). No
+    stiffer than an eighth of the substep rate
     (MAX_CONTACT_HERTZ_PER_RATE, as Box2D since v3.1): at a quarter (Box2D v3.0) a pyramid of 40
     boxes rings forever, its top box swinging between 15 mm up and 69 mm down (Box2D's own solver
     with the quarter cap rings too); at an eighth it rests."""
