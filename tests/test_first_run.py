@@ -477,3 +477,15 @@ def test_a_quiet_warmup_prints_no_compile_notice(quiet):
     )
     assert ("compiling the engine" in done.stderr) is not quiet
     assert done.stderr.strip() == "" or not quiet
+
+
+def test_the_wait_shows_its_line_and_the_time_so_far_redrawn_every_tick():
+    # a wait has no parts to count: the line stands in for the bar, and the clock ticks
+    from sandbox.cli.progress import TickingBar
+
+    screen = io.StringIO()
+    with TickingBar(screen, 1, "", str, tick=0.05, line="waiting for the background warmup"):
+        time.sleep(0.3)
+    drawn = [d for d in screen.getvalue().split("\r") if d.strip()]
+    assert len(drawn) >= 3  # drawn when it starts, then at least twice by the ticker
+    assert all(d == "waiting for the background warmup [00:00]" for d in drawn)

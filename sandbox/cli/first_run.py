@@ -135,19 +135,16 @@ def wait_for_warmup(folder, poll: float = 0.5) -> bool:
         "the engine is compiling in the background (an earlier run started it): waiting for it",
         flush=True,
     )
-    clock = None
-    if sys.stdout.isatty():
-        from tqdm import tqdm
+    from contextlib import nullcontext
 
-        clock = tqdm(bar_format="waiting [{elapsed}]", leave=False, file=sys.stdout)
-    last = time.monotonic()
-    while running_warmup(folder) is not None:
-        time.sleep(poll)
-        if clock is not None and time.monotonic() - last >= 1.0:
-            clock.refresh()
-            last = time.monotonic()
-    if clock is not None:
-        clock.close()
+    from sandbox.cli.progress import TickingBar
+
+    waiting = "waiting for the background warmup"
+    screen = sys.stdout
+    clock = TickingBar(screen, 1, "", str, line=waiting) if screen.isatty() else nullcontext()
+    with clock:
+        while running_warmup(folder) is not None:
+            time.sleep(poll)
     return True
 
 

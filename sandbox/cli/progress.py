@@ -13,14 +13,22 @@ from collections.abc import Callable
 class TickingBar:
     """A tqdm bar on ``screen`` over ``total`` parts called ``unit``, whose postfix is
     ``postfix()``, redrawn every ``tick`` seconds by a thread until the bar is closed. Use it as
-    a context manager; ``advance()`` when a part is done, ``write(line)`` to print above it."""
+    a context manager; ``advance()`` when a part is done, ``write(line)`` to print above it.
+    With ``line``, that text stands in for the bar (a wait with no parts to count)."""
 
     def __init__(
-        self, screen, total: int, unit: str, postfix: Callable[[], str], tick: float = 1.0
+        self,
+        screen,
+        total: int,
+        unit: str,
+        postfix: Callable[[], str],
+        tick: float = 1.0,
+        line: str | None = None,
     ) -> None:
         from tqdm import tqdm
 
-        line = "{desc}{percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} " + unit
+        if line is None:
+            line = "{desc}{percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} " + unit
         self.postfix = postfix
         fmt = line + " [{elapsed}{postfix}]"
         self.bar = tqdm(total=total, bar_format=fmt, leave=False, file=screen)
