@@ -113,8 +113,8 @@ CONTACT_POINT = np.dtype(
         ("anchor_depth", F8),  # the depth measured between those two (m): depth, plus how far
         # the point lies out from each circle's centre along the normal
         ("approach_speed", F8),  # v_r . n when the step began, before gravity (m/s)
-        ("base_separation", F8),  # soft step: -depth - (r_b - r_a) . n, r the arms of local_a
-        # and local_b: for the separation now
+        ("base_separation", F8),  # soft step: -anchor_depth - (r_b - r_a) . n, r the point's
+        # arms at detection: what the bodies' moves are added to for the separation now
         ("separation", F8),  # soft step: the separation at the bodies' latest poses (m)
         ("bounce_impulse", F8),  # what the passes after the sweeps added (N s), not warm-started
         ("bounce_tangent", F8),  # and their friction (N s, the shock pass's), not warm-started

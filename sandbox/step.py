@@ -337,7 +337,7 @@ def begin_soft(contacts, k: int, previous, model, context) -> None:
     ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(contacts, k, bodies, context)
-    prepare_soft(contacts, k, shapes, bodies, context)
+    prepare_soft(contacts, k, bodies, context)
     gather_forces(bodies)
     prepare_joints_soft(joints, bodies, context)
 

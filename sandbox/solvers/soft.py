@@ -49,7 +49,6 @@ import numpy as np
 
 from sandbox.jit import njit
 from sandbox.math2d import rotate, set_velocity, velocity_of
-from sandbox.records import CIRCLE
 from sandbox.solvers.common import (
     apply_normal,
     apply_tangent,
@@ -86,23 +85,11 @@ def with_fixed(c) -> bool:
     return c["inv_mass_a"] == 0.0 or c["inv_mass_b"] == 0.0
 
 
-@njit(inline="always")
-def anchor_arm(shape, body, point):
-    """Where the point a contact point's separation follows on one side
-    (:func:`sandbox.solvers.common.anchor`: ``local_a`` or ``local_b``) is now, relative to
-    the body's centre of mass, in the world (m): the contact point (``point``, where the
-    narrowphase found it), or a circle's centre."""
-    if shape["kind"] == CIRCLE:
-        centre = shape["center"]
-        return rotate(body["cs"][0], body["cs"][1], centre[0], centre[1])
-    return point[0] - body["com"][0], point[1] - body["com"][1]
-
-
 @njit
-def prepare_soft(contacts, k: int, shapes, bodies, context) -> None:
+def prepare_soft(contacts, k: int, bodies, context) -> None:
     """The soft step's additions to :func:`sandbox.solvers.common.prepare_contacts`: each
-    point's base separation s0 - (r_b - r_a) . n, r the anchors' arms now (:func:`anchor_arm`),
-    and each contact's softness (twice the stiffness against a body that cannot move). No
+    point's base separation, what :func:`separation_now` adds the bodies' moves to, and each
+    contact's softness (twice the stiffness against a body that cannot move). No
     stiffer than an eighth of the substep rate
     (MAX_CONTACT_HERTZ_PER_RATE, as Box2D since v3.1): at a quarter (Box2D v3.0) a pyramid of 40
     boxes rings forever, its top box swinging between 15 mm up and 69 mm down (Box2D's own solver
@@ -118,13 +105,15 @@ def prepare_soft(contacts, k: int, shapes, bodies, context) -> None:
         c["soft_bias_rate"], c["soft_mass_scale"] = rate, mass_scale
         c["soft_impulse_scale"] = impulse_scale
         nx, ny = c["normal"][0], c["normal"][1]
-        shape_a, shape_b = shapes[c["shape_a"]], shapes[c["shape_b"]]
-        body_a, body_b = bodies[c["a"]], bodies[c["b"]]
+        com_a, com_b = bodies[c["a"]]["com"], bodies[c["b"]]["com"]
         for j in range(c["count"]):
             p = c["points"][j]
-            rax, ray = anchor_arm(shape_a, body_a, p["point"])
-            rbx, rby = anchor_arm(shape_b, body_b, p["point"])
-            p["base_separation"] = -p["depth"] - ((rbx - rax) * nx + (rby - ray) * ny)
+            point = p["point"]
+            # s0 - (R_b l_b - R_a l_a) . n, l the anchors: the contact point's arms r less
+            # each circle's reach along n (anchor_depth has them), -anchor_depth - (r_b - r_a) . n
+            rax, ray = point[0] - com_a[0], point[1] - com_a[1]
+            rbx, rby = point[0] - com_b[0], point[1] - com_b[1]
+            p["base_separation"] = -p["anchor_depth"] - ((rbx - rax) * nx + (rby - ray) * ny)
             p["separation"] = separation_now(c, p, bodies)  # what the first solve pass needs
 
 
