@@ -261,6 +261,10 @@ def test_a_box_shape_and_a_body_of_one_shape_take_the_closed_forms():
 
     box = Box(2.0, 0.5, offset=(1.0, -2.0), angle=0.7, density=4.0)
     closed = box_mass_properties(2.0, 0.5, 4.0, offset=(1.0, -2.0), angle=0.7)
+    # by hand: m = rho w h = 4 kg, I = m (w^2 + h^2) / 12 about the centroid, at the offset
+    assert closed.mass == pytest.approx(4.0, rel=1e-15)
+    assert closed.moment == pytest.approx(4.0 * (2.0**2 + 0.5**2) / 12.0, rel=1e-15)
+    np.testing.assert_allclose(closed.centroid, (1.0, -2.0), rtol=0, atol=1e-15)
     got = box.mass_properties()
     assert (got.mass, got.moment, got.area) == (closed.mass, closed.moment, closed.area)
     np.testing.assert_array_equal(got.centroid, closed.centroid)
