@@ -1,7 +1,8 @@
 """Every lesson runs as a notebook, the way `sandbox lessons` runs it (jupytext -> ipynb, a fresh
-kernel, the HTML page), once for the whole module, two at a time. Then: each writes figures,
-shows every figure and animation inline in the cell that made it, shows each table once (and
-saves it to tables.md), its explorer cell executes, and the course book's links all resolve.
+kernel forked from one that imported the course's libraries, the HTML page), once for the
+whole module, two at a time. Then: each writes figures, shows every figure and animation inline
+in the cell that made it, shows each table once (and saves it to tables.md), its explorer cell
+executes, and the course book's links all resolve.
 
 The kernels run with SANDBOX_CHECK_FIGURES set, so every figure a lesson saves through
 ``sandbox.lessonkit.save_figure`` is checked against the figure standard
@@ -22,7 +23,7 @@ from sandbox import compile_cache, figure_standard
 from sandbox.course.book import write_book
 from sandbox.course.catalogue import find_lessons
 from sandbox.course.links import book_problems
-from sandbox.course.runner import kernel_specs, run_notebook
+from sandbox.course.runner import kernels, run_notebook
 from sandbox.explorer import CONTROLS_KEY
 from sandbox.notebook import FILE_KEY
 
@@ -43,8 +44,7 @@ def course(tmp_path_factory):
     WARM_BEFORE["cache"] = compile_cache.is_warm()
     os.environ[figure_standard.ENV] = "1"  # save_figure raises on a figure that breaks it
     try:
-        with tempfile.TemporaryDirectory() as tmp:
-            specs = kernel_specs(Path(tmp))
+        with tempfile.TemporaryDirectory() as tmp, kernels(Path(tmp), outputs) as specs:
             logs = Path(tmp) / "compiles"  # as `sandbox lessons`: compiles counted, not shown
             logs.mkdir()
             with ThreadPoolExecutor(max_workers=2) as pool:

@@ -169,11 +169,14 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     ``jobs`` or the order. The kernels a lesson compiles are counted in a log
     (:func:`sandbox.course.runner.compile_log`) rather than announced in its page.
     """
-    from sandbox.course.runner import Outcome, compiled_in, kernel_specs, run_notebook, run_script
+    from contextlib import ExitStack
+
+    from sandbox.course.runner import Outcome, compiled_in, kernels, run_notebook, run_script
 
     _compile_first(len(chosen))
-    with tempfile.TemporaryDirectory(prefix="sandbox-kernel-") as tmp:
-        specs = kernel_specs(Path(tmp)) if notebooks else None
+    with ExitStack() as stack:
+        tmp = stack.enter_context(tempfile.TemporaryDirectory(prefix="sandbox-kernel-"))
+        specs = stack.enter_context(kernels(Path(tmp), outputs)) if notebooks else None
         logs = Path(tmp) / "compiles"
         logs.mkdir()
 

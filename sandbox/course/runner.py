@@ -11,6 +11,8 @@ import os
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -122,10 +124,27 @@ def kernel_specs(folder: Path) -> Path:
     return specs
 
 
+@contextmanager
+def kernels(folder: Path, outputs: Path) -> Iterator[Path]:
+    """Kernel specs under ``folder`` for executing lessons that write into ``outputs``, while
+    the ``with`` block lasts: kernels forked from one process that has imported the course's
+    libraries (:mod:`sandbox.course.prefork`) where processes fork, else ordinary kernels
+    (:func:`kernel_specs`). Start it after setting anything in the environment the lessons
+    should see: the forking process takes the environment it starts with."""
+    from sandbox.course import prefork
+
+    if not prefork.available():
+        yield kernel_specs(folder)
+        return
+    address = folder / "prefork"
+    with prefork.Server(address, lesson_env(outputs)):
+        yield prefork.write_spec(folder / "kernels", address)
+
+
 def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None = None) -> Outcome:
     """Execute the lesson as a notebook and write ``NN_name.ipynb`` and ``NN_name.html``.
 
-    ``specs`` is the folder of :func:`kernel_specs`. A failing cell stops the run; the notebook
+    ``specs`` is the folder of :func:`kernels` (or :func:`kernel_specs`). A failing cell stops the run; the notebook
     and page are still written, showing the error where it happened. With ``logs`` (a folder),
     the kernels it compiles are counted there (:func:`compile_log`), and no compile notice
     lands in the notebook.

@@ -1,0 +1,186 @@
+"""Notebook kernels forked from a process that has imported the course's libraries
+(sandbox.course.prefork): they run cells in the folder and environment their launcher was
+started with, count their compiles where the lesson runner asks, take interrupts, exit with
+their launcher, and without a server are ordinary kernels."""
+
+import os
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("ipykernel")
+pytest.importorskip("jupyter_client")
+
+from jupyter_client.kernelspec import KernelSpecManager  # noqa: E402
+from jupyter_client.manager import KernelManager  # noqa: E402
+
+from sandbox.compile_cache import COMPILE_LOG  # noqa: E402
+from sandbox.course import prefork  # noqa: E402
+
+pytestmark = pytest.mark.skipif(not prefork.available(), reason="no fork here")
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("prefork")
+    address = folder / "server"
+    env = {**os.environ, "PREFORK_MARK": "from the server"}
+    with prefork.Server(address, env):
+        yield folder, prefork.write_spec(folder / "kernels", address)
+
+
+def start(specs: Path, cwd: Path, env: dict | None = None) -> tuple[KernelManager, object]:
+    manager = KernelManager(
+        kernel_name="python3",
+        kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(specs)], ensure_native_kernel=False),
+    )
+    manager.start_kernel(cwd=str(cwd), env={**os.environ, **(env or {})})
+    client = manager.client()
+    client.start_channels()
+    client.wait_for_ready(timeout=60)
+    return manager, client
+
+
+def run(client, code: str, timeout: float = 60) -> dict:
+    """Execute ``code``; its stdout and the reply's content."""
+    msg_id = client.execute(code)
+    out = []
+    while True:
+        msg = client.get_iopub_msg(timeout=timeout)
+        if msg["parent_header"].get("msg_id") != msg_id:
+            continue
+        if msg["msg_type"] == "stream":
+            out.append(msg["content"]["text"])
+        if msg["msg_type"] == "status" and msg["content"]["execution_state"] == "idle":
+            break
+    reply = client.get_shell_msg(timeout=timeout)
+    return {"out": "".join(out), **reply["content"]}
+
+
+def stop(manager, client) -> None:
+    client.stop_channels()
+    manager.shutdown_kernel(now=True)
+
+
+def test_a_forked_kernel_runs_in_its_launchers_folder_and_environment(server, tmp_path):
+    _, specs = server
+    manager, client = start(specs, tmp_path, {"LESSON_MARK": "this lesson"})
+    try:
+        code = (
+            "import os, sys\n"
+            "print(os.getcwd())\n"
+            "print(os.environ.get('LESSON_MARK'), os.environ.get('PREFORK_MARK'))\n"
+            "print('sandbox.world' in sys.modules, os.getpid() != os.getppid())"
+        )
+        reply = run(client, code)
+        assert reply["status"] == "ok"
+        cwd, marks, loaded = reply["out"].splitlines()
+        assert Path(cwd).resolve() == tmp_path.resolve()
+        # the launcher's environment replaces the server's; the libraries came imported
+        assert marks == "this lesson None"
+        assert loaded == "True True"
+    finally:
+        stop(manager, client)
+
+
+def test_each_kernel_starts_from_the_server_not_from_the_last_lesson(server, tmp_path):
+    _, specs = server
+    first, client = start(specs, tmp_path)
+    try:
+        assert run(client, "import sandbox; sandbox.LEFT_BY_A_LESSON = 1")["status"] == "ok"
+    finally:
+        stop(first, client)
+    second, client = start(specs, tmp_path)
+    try:
+        reply = run(client, "import sandbox; print(hasattr(sandbox, 'LEFT_BY_A_LESSON'))")
+        assert reply["out"].strip() == "False"
+    finally:
+        stop(second, client)
+
+
+def test_a_forked_kernel_logs_its_compiles_where_its_launcher_says(server, tmp_path):
+    _, specs = server
+    log = tmp_path / "lesson.compiles"
+    manager, client = start(specs, tmp_path, {COMPILE_LOG: str(log)})
+    try:
+        code = (
+            "from sandbox.jit import JIT_ENABLED, njit\n"
+            "print(JIT_ENABLED)\n"
+            "def add_one(x):\n    return x + 1\n"
+            "print(njit(cache=False)(add_one)(1))"
+        )
+        reply = run(client, code)
+        assert reply["status"] == "ok"
+    finally:
+        stop(manager, client)
+    enabled, result = reply["out"].split()
+    assert result == "2"
+    if enabled == "True":
+        assert log.read_text(encoding="utf-8").split() == ["add_one"]
+
+
+def test_an_interrupt_reaches_a_forked_kernel(server, tmp_path):
+    _, specs = server
+    manager, client = start(specs, tmp_path)
+    try:
+        msg_id = client.execute("import time\ntime.sleep(60)")
+        deadline = time.monotonic() + 30
+        while True:  # the cell is running
+            msg = client.get_iopub_msg(timeout=30)
+            if msg["parent_header"].get("msg_id") == msg_id and msg["msg_type"] == "execute_input":
+                break
+            assert time.monotonic() < deadline
+        time.sleep(0.2)
+        manager.interrupt_kernel()
+        reply = client.get_shell_msg(timeout=20)["content"]
+        assert reply["status"] == "error" and reply["ename"] == "KeyboardInterrupt"
+    finally:
+        stop(manager, client)
+
+
+def test_a_forked_kernel_exits_with_its_launcher(server, tmp_path):
+    _, specs = server
+    manager, client = start(specs, tmp_path)
+    pid = int(run(client, "import os; print(os.getpid())")["out"])
+    assert pid != manager.provisioner.process.pid  # the kernel is not the launched process
+    stop(manager, client)  # kills the launcher
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return
+        time.sleep(0.05)
+    pytest.fail(f"kernel {pid} still running 10 s after its launcher was killed")
+
+
+def test_without_a_server_the_launcher_is_an_ordinary_kernel(tmp_path):
+    specs = prefork.write_spec(tmp_path / "kernels", tmp_path / "nobody-listens")
+    manager, client = start(specs, tmp_path)
+    try:
+        reply = run(client, "import sys; print('sandbox.world' in sys.modules, sys.executable)")
+        loaded, executable = reply["out"].split()
+        assert loaded == "False"
+        assert executable == sys.executable
+    finally:
+        stop(manager, client)
+
+
+def test_a_kernel_asked_for_with_other_import_settings_starts_afresh(server, tmp_path):
+    _, specs = server
+    manager, client = start(specs, tmp_path, {"SANDBOX_JIT": "0"})
+    try:
+        code = (
+            "import sys\n"
+            "print('sandbox.world' in sys.modules)\n"
+            "import sandbox.jit\n"
+            "print(sandbox.jit.JIT_ENABLED)"
+        )
+        reply = run(client, code)
+        assert reply["out"].split() == ["False", "False"]
+        pid = int(run(client, "import os; print(os.getpid())")["out"])
+        assert pid == manager.provisioner.process.pid  # the launcher became the kernel
+    finally:
+        stop(manager, client)
