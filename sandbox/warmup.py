@@ -14,19 +14,25 @@ which loads what the other compiled and compiles whatever it missed. numba compi
 function at a time per process, and every world steps through the same stages, so a process
 loads from the cache what the other has already written there, and compiles again what the
 other is still compiling. The two shares are therefore planned (:data:`FIRST_SHARE`), not dealt
-round-robin: the first compiles the stages with the iterative solver's one-call step (the
-longest family, 42 s on its own), then the other rigid solvers, continuous collision and the
-broadphases, which reuse those stages; the second meanwhile compiles the kernels lessons call
-on their own, which no step uses (:func:`lesson_kernels`), then the soft step (22 s after the
-stages), the forces and the integrators, which the first share never steps, and last the
-soft step's joint passes and the colouring on a world's records (:func:`record_kernels`).
-Dealt round-robin, both shares began with the iterative solver (once in one call, once stage
-by stage) and compiled the same stages side by side for 40 s, and both compiled the soft step and the force generators again. Measured on the
-project's 2-core machine from an empty cache (`sandbox warmup`, alternating the two codes):
-82 to 86 s wall and 141 to 150 CPU-s planned, against 101 to 105 s and 182 to 190 CPU-s
-round-robin, and about 121 s in one process. With the soft step in the first share after the
-iterative solver, the first share alone took 72 s; moved to the second: 64.0 and 64.4 s wall
-and 110 to 111 CPU-s, against 74.6 and 75.8 s and 138 to 140 CPU-s (one process: 103 s).
+round-robin:
+
+- the first steps the iterative solver's one-call step, compiling its stages from the first
+  (the longest family, 44 s on its own), then the soft step, which reuses them, its staged
+  path and the soft step with forces, and last the soft step's joint passes and the colouring
+  on a world's records (:func:`record_kernels`);
+- the second meanwhile compiles the same step's stages from the last, back to restitution
+  (:func:`late_stages`: the position stage alone is a third of the step's compiling), so that
+  the two meet in the middle and the first loads them; then the kernels lessons call on their
+  own, which no step uses (:func:`lesson_kernels`), the integrators with forces, continuous
+  collision, the other rigid solvers and the broadphases.
+
+Measured on the project's 2-core machine from an empty cache (`sandbox warmup`, alternating the
+codes): dealt round-robin, both shares began with the iterative solver and compiled the same
+stages side by side for 40 s: 101 to 105 s and 182 to 190 CPU-s. Planned with both shares
+starting at the first stage (the iterative step in one, the soft step in the other, which
+compiled the shared stages beside it): 63.5 to 70.3 s and 112 to 123 CPU-s. With the second
+share compiling from the last stage: 61.8 to 61.9 s and 116 to 117 CPU-s, no kernel compiled
+twice but where the shares meet. In one process: about 103 s.
 """
 
 from __future__ import annotations
@@ -111,6 +117,44 @@ def worlds():
         yield f"one body, {integrator}", lone, False
 
 
+def late_stages() -> None:
+    """The one-call steps' last stages, compiled first, on small worlds prepared but never
+    stepped (no contacts): the iterative step's (:func:`sandbox.step.fast_step`) from the last,
+    back to restitution (its position stage is a third of its compiling). The other share
+    meanwhile compiles the step from its first stage, stepping its world, and loads from the
+    cache what this share has finished, so the two meet in the middle instead of compiling
+    the same stages side by side."""
+    from sandbox.integrators import move_bodies, plan_motion
+    from sandbox.penetration import fix_positions
+    from sandbox.solvers.common import restitution
+    from sandbox.step import finish_step
+
+    a = prepared(box_on_floor())
+    ctx = a.context[0]
+    contacts, k = a.buffers.sets[1 - ctx["contact_set"]], 0
+    finish_step(contacts, k, a.joints, a.bodies, a.context)
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
+    move_bodies(a.bodies, a.rot, a.context)
+    plan_motion(a.bodies, ctx["dt"])
+    restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
+
+
+def box_on_floor(**settings) -> World:
+    """A box on a static floor: no joints, nothing to divide by zero when a stage runs alone."""
+    w = World(gravity=(0.0, -9.81), **settings)
+    w.add_body(Body("floor", type="static", position=(0.0, -0.5))).add_shape(Box(20.0, 1.0))
+    w.add_body(Body("box", position=(0.0, 0.5))).add_shape(Box(1.0, 1.0))
+    return w
+
+
+def prepared(w: World):
+    """``w``'s records, prepared for a step on the staged path (which compiles nothing ahead,
+    unlike the one-call step's)."""
+    w.timer = StageTimer()
+    w._prepare(w.dt)
+    return w.arrays()
+
+
 def helpers() -> None:
     """The compiled functions lessons and tests call on their own."""
     lesson_kernels()
@@ -182,28 +226,25 @@ def record_kernels() -> None:
 
 
 # two shares: the first's families, in this order; the second takes the others, the families of
-# SECOND_SHARE_FIRST first (the soft step and the forces, which the first never steps)
+# SECOND_SHARE_FIRST first (continuous collision and the other rigid solvers, which reuse the
+# stages both shares compiled)
 FIRST_SHARE = (
     "iterative solver",
     "iterative solver, staged",
-    "shock solver",
-    "shock solver, staged",
-    "pairwise solver",
-    "pairwise solver, staged",
-    "continuous collision",
-    "brute broadphase",
-    "grid broadphase",
-    "quadtree broadphase",
-    "kdtree broadphase",
-)
-SECOND_SHARE_FIRST = (
     "soft solver",
     "soft solver, staged",
     "soft step with forces",
+)
+SECOND_SHARE_FIRST = (
     "explicit_euler and forces",
     "verlet and forces",
     "rk4 and forces",
     "rk4 and forces, staged",
+    "continuous collision",
+    "shock solver",
+    "shock solver, staged",
+    "pairwise solver",
+    "pairwise solver, staged",
 )
 
 
@@ -239,11 +280,12 @@ def warm_part(index: int, parts: int, report=print) -> set[str]:
     share = part(index, parts)
     planned = parts == 2
     if planned and index == 1:
-        lesson_kernels()  # while the first share compiles the stages
+        late_stages()  # while the first share compiles the steps from their first stage
+        lesson_kernels()
     warm_families(share, report)
-    if planned and index == 1:
+    if planned and index == 0:
         record_kernels()  # after the soft step, whose kernels they share
-    elif index == 0 and not planned:
+    elif index == 0:
         helpers()
     return {label for label, _, _ in share}
 
