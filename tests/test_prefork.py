@@ -184,3 +184,29 @@ def test_a_kernel_asked_for_with_other_import_settings_starts_afresh(server, tmp
         assert pid == manager.provisioner.process.pid  # the launcher became the kernel
     finally:
         stop(manager, client)
+
+
+def test_the_server_exits_when_the_command_that_started_it_is_gone(tmp_path):
+    # a command killed without its cleanup leaves no server behind
+    import subprocess
+
+    address = tmp_path / "server"
+    code = (
+        "import os, sys, time\n"
+        "from pathlib import Path\n"
+        "from sandbox.course import prefork\n"
+        f"server = prefork.Server(Path({str(address)!r}), dict(os.environ)).__enter__()\n"
+        "print(server.process.pid, flush=True)\n"
+        "os._exit(0)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    pid = int(done.stdout.split()[0])
+    deadline = time.monotonic() + 15
+    while time.monotonic() < deadline:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return
+        time.sleep(0.1)
+    os.kill(pid, 9)
+    pytest.fail("the server outlived the command that started it by 15 s")

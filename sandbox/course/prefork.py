@@ -82,7 +82,14 @@ class Server:
 
         self.address = address
         self.process = subprocess.Popen(
-            [sys.executable, "-m", "sandbox.course.prefork", "serve", str(address)],
+            [
+                sys.executable,
+                "-m",
+                "sandbox.course.prefork",
+                "serve",
+                str(address),
+                str(os.getpid()),
+            ],
             env=env,
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
@@ -107,9 +114,9 @@ class Server:
         self.address.unlink(missing_ok=True)
 
 
-def serve(address: str) -> None:
+def serve(address: str, parent: int) -> None:
     """Listen at ``address``, import :data:`PRELOAD`, then fork a kernel for each request,
-    until terminated."""
+    until terminated or the process ``parent`` (the command that started it) is gone."""
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     listener.bind(address)
     listener.listen(16)
@@ -122,8 +129,15 @@ def serve(address: str) -> None:
             pass
     signal.signal(signal.SIGCHLD, signal.SIG_IGN)  # kernels are reaped as they exit
     signal.signal(signal.SIGTERM, lambda *_: os._exit(0))
+    listener.settimeout(1.0)
     while True:
-        connection, _ = listener.accept()
+        try:
+            connection, _ = listener.accept()
+        except TimeoutError:
+            if os.getppid() != parent:  # the lessons' command is gone: so is the server
+                os._exit(0)
+            continue
+        connection.settimeout(None)
         try:
             request, fds = _receive(connection)
         except (OSError, ValueError):
@@ -266,8 +280,8 @@ def _signal(pid: int, number: int) -> None:
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["serve"]:
-        serve(sys.argv[2])
+        serve(sys.argv[2], int(sys.argv[3]))
     elif sys.argv[1:2] == ["launch"]:
         sys.exit(launch(sys.argv[2], sys.argv[3]))
     else:
-        sys.exit("usage: python -m sandbox.course.prefork serve ADDRESS | launch ADDRESS FILE")
+        sys.exit("usage: python -m sandbox.course.prefork serve ADDRESS PID | launch ADDRESS FILE")
