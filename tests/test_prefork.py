@@ -31,12 +31,12 @@ def server(tmp_path_factory):
         yield folder, prefork.write_spec(folder / "kernels", address)
 
 
-def start(specs: Path, cwd: Path, env: dict | None = None) -> tuple[KernelManager, object]:
+def start(specs: Path, cwd: Path, env: dict | None = None, options=()) -> tuple:
     manager = KernelManager(
         kernel_name="python3",
         kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(specs)], ensure_native_kernel=False),
     )
-    manager.start_kernel(cwd=str(cwd), env={**os.environ, **(env or {})})
+    manager.start_kernel(cwd=str(cwd), env={**os.environ, **(env or {})}, extra_arguments=options)
     client = manager.client()
     client.start_channels()
     client.wait_for_ready(timeout=60)
@@ -66,17 +66,20 @@ def stop(manager, client) -> None:
 
 def test_a_forked_kernel_runs_in_its_launchers_folder_and_environment(server, tmp_path):
     _, specs = server
-    manager, client = start(specs, tmp_path, {"LESSON_MARK": "this lesson"})
+    options = ["--HistoryManager.hist_file=:memory:"]  # as the notebook client asks
+    manager, client = start(specs, tmp_path, {"LESSON_MARK": "this lesson"}, options)
     try:
         code = (
             "import os, sys\n"
             "print(os.getcwd())\n"
             "print(os.environ.get('LESSON_MARK'), os.environ.get('PREFORK_MARK'))\n"
-            "print('sandbox.world' in sys.modules, os.getpid() != os.getppid())"
+            "print('sandbox.world' in sys.modules, os.getpid() != os.getppid())\n"
+            "print(get_ipython().history_manager.hist_file)"
         )
         reply = run(client, code)
         assert reply["status"] == "ok"
-        cwd, marks, loaded = reply["out"].splitlines()
+        cwd, marks, loaded, history = reply["out"].splitlines()
+        assert history == ":memory:"  # the kernel's own options reach it
         assert Path(cwd).resolve() == tmp_path.resolve()
         # the launcher's environment replaces the server's; the libraries came imported
         assert marks == "this lesson None"

@@ -159,8 +159,8 @@ def serve(address: str, parent: int) -> None:
 
 
 def _receive(connection: socket.socket) -> tuple[dict, list[int]]:
-    """One request: a JSON line (connection file, folder, environment) and three descriptors
-    (the launcher's standard streams)."""
+    """One request: a JSON line (connection file, options, folder, environment) and three
+    descriptors (the launcher's standard streams)."""
     data, fds, _, _ = socket.recv_fds(connection, 1 << 20, 3)
     while not data.endswith(b"\n"):
         more = connection.recv(1 << 20)
@@ -190,7 +190,7 @@ def _kernel(connection: socket.socket, request: dict, fds: list[int]) -> None:
         watch.start()
         from ipykernel.kernelapp import IPKernelApp
 
-        sys.argv = ["ipykernel_launcher", "-f", request["connection_file"]]
+        sys.argv = ["ipykernel_launcher", "-f", request["connection_file"], *request["options"]]
         parent = os.environ.get("JPY_PARENT_PID")  # read by the kernel's class when imported
         if parent:
             sys.argv.append(f"--IPKernelApp.parent_handle={parent}")
@@ -236,13 +236,19 @@ def _exit_with(connection: socket.socket) -> None:
     os._exit(1)
 
 
-def launch(address: str, connection_file: str) -> int:
+def launch(address: str, connection_file: str, options: list[str]) -> int:
     """The process the notebook client starts: ask the server for a forked kernel, then stay
-    until it exits, passing on interrupts. Without a server, become an ordinary kernel."""
+    until it exits, passing on interrupts. Without a server, become an ordinary kernel.
+    ``options`` are the kernel's own command-line options (the notebook client adds some)."""
     try:
         connection = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         connection.connect(address)
-        request = {"connection_file": connection_file, "cwd": os.getcwd(), "env": dict(os.environ)}
+        request = {
+            "connection_file": connection_file,
+            "options": options,
+            "cwd": os.getcwd(),
+            "env": dict(os.environ),
+        }
         data = (json.dumps(request) + "\n").encode()
         socket.send_fds(connection, [data], [0, 1, 2])
         reply = b""
@@ -255,7 +261,7 @@ def launch(address: str, connection_file: str) -> int:
         if pid <= 0:
             raise ValueError("not forked: other import-time settings")
     except (OSError, ValueError):
-        argv = [sys.executable, "-m", "ipykernel_launcher", "-f", connection_file]
+        argv = [sys.executable, "-m", "ipykernel_launcher", "-f", connection_file, *options]
         os.execv(sys.executable, argv)
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda number, _: _signal(pid, number))
@@ -282,6 +288,6 @@ if __name__ == "__main__":
     if sys.argv[1:2] == ["serve"]:
         serve(sys.argv[2], int(sys.argv[3]))
     elif sys.argv[1:2] == ["launch"]:
-        sys.exit(launch(sys.argv[2], sys.argv[3]))
+        sys.exit(launch(sys.argv[2], sys.argv[3], sys.argv[4:]))
     else:
         sys.exit("usage: python -m sandbox.course.prefork serve ADDRESS PID | launch ADDRESS FILE")
