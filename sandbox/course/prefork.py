@@ -11,9 +11,9 @@ The kernel spec (:func:`write_spec`) runs :func:`launch` in a small process of i
 one the notebook client starts, signals and stops: it passes its connection file, working
 folder, environment and standard streams to the server, which forks the kernel, and then
 waits until the kernel has exited, passing on an interrupt. When the small process is killed,
-the kernel sees its end of the connection close and exits too. Where there is no fork (not
-POSIX) or no server answers, the small process becomes an ordinary kernel
-(``python -m ipykernel_launcher``).
+the kernel sees its end of the connection close and exits too. Where kernels are not forked
+(:func:`available`: Linux only) or no server answers, the small process becomes an ordinary
+kernel (``python -m ipykernel_launcher``).
 
 Nothing is compiled in the server: kernels load the engine's compiled code themselves, from the
 cache, as any process does.
@@ -52,8 +52,10 @@ START = 10.0  # s, the longest a server is waited for before lessons start witho
 
 
 def available() -> bool:
-    """Whether kernels can be forked here (POSIX, with Unix sockets that pass descriptors)."""
-    return os.name == "posix" and hasattr(socket, "send_fds") and hasattr(os, "fork")
+    """Whether kernels are forked here: on Linux (Unix sockets that pass descriptors). Not on
+    macOS, where a process that has loaded Apple's system libraries (numpy's Accelerate) must
+    not go on in a fork without exec, nor on Windows, which has no fork."""
+    return sys.platform.startswith("linux") and hasattr(socket, "send_fds")
 
 
 def write_spec(folder: Path, address: Path) -> Path:
