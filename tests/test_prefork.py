@@ -59,6 +59,18 @@ def run(client, code: str, timeout: float = 60) -> dict:
     return {"out": "".join(out), **reply["content"]}
 
 
+def gone(pid: int, seconds: float) -> bool:
+    """Whether process ``pid`` ends within ``seconds``."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.05)
+    return False
+
+
 def stop(manager, client) -> None:
     client.stop_channels()
     manager.shutdown_kernel(now=True)
@@ -149,14 +161,7 @@ def test_a_forked_kernel_exits_with_its_launcher(server, tmp_path):
     pid = int(run(client, "import os; print(os.getpid())")["out"])
     assert pid != manager.provisioner.process.pid  # the kernel is not the launched process
     stop(manager, client)  # kills the launcher
-    deadline = time.monotonic() + 10
-    while time.monotonic() < deadline:
-        try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            return
-        time.sleep(0.05)
-    pytest.fail(f"kernel {pid} still running 10 s after its launcher was killed")
+    assert gone(pid, 10.0), f"kernel {pid} still running 10 s after its launcher was killed"
 
 
 def test_without_a_server_the_launcher_is_an_ordinary_kernel(tmp_path):
@@ -204,12 +209,6 @@ def test_the_server_exits_when_the_command_that_started_it_is_gone(tmp_path):
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     pid = int(done.stdout.split()[0])
-    deadline = time.monotonic() + 15
-    while time.monotonic() < deadline:
-        try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            return
-        time.sleep(0.1)
-    os.kill(pid, 9)
-    pytest.fail("the server outlived the command that started it by 15 s")
+    if not gone(pid, 15.0):
+        os.kill(pid, 9)
+        pytest.fail("the server outlived the command that started it by 15 s")
