@@ -240,7 +240,7 @@ def test_lessons_after_a_background_warmup_do_not_warm_up_again(monkeypatch, cap
     monkeypatch.setattr(first_run, "wait_for_warmup", lambda folder: True)  # it ended unwarm
     lessons._compile_first(lessons.FEW + 1)
     if compile_cache.CACHE_FOLDER is not None:
-        assert calls == [[sys.executable, "-m", "sandbox", "warmup"]]
+        assert calls == [[sys.executable, "-m", "sandbox", "warmup", "--lessons"]]
 
 
 def test_the_warmup_shares_cover_every_family_once():
@@ -259,6 +259,28 @@ def test_the_warmup_shares_cover_every_family_once():
     assert second[: len(SECOND_SHARE_FIRST)] == list(SECOND_SHARE_FIRST)
     assert first[:3] == ["iterative solver", "iterative solver, staged", "soft solver"]
     assert second[0] == "explicit_euler and forces"
+
+
+def test_the_lessons_warmup_steps_only_the_lessons_families_and_marks_nothing(monkeypatch):
+    # `sandbox warmup --lessons` (a first `sandbox lessons`): the lessons' families, shared
+    # between two processes as planned, each once; the cache is not marked warm, so that the
+    # background warmup after the lessons compiles the rest (the suite's cache: all loaded)
+    from sandbox import warmup
+
+    labels = [label for label, _, _ in warmup.worlds()]
+    assert set(warmup.LESSON_FAMILIES) < set(labels)
+    shares = [[label for label, _, _ in warmup.part(i, 2, lessons=True)] for i in range(2)]
+    assert sorted(sum(shares, [])) == sorted(warmup.LESSON_FAMILIES)
+    assert shares[0][0] == "iterative solver"
+    marked, heard = [], []
+    monkeypatch.setattr(warmup, "mark_warm", lambda: marked.append(True))
+    warmup.warm_up(heard.append, jobs=1, lessons=True)
+    assert sorted(line.strip().removesuffix(": ready") for line in heard) == sorted(
+        warmup.LESSON_FAMILIES
+    )
+    assert marked == []
+    warmup.warm_up(heard.append, jobs=1)
+    assert marked == [True]
 
 
 def test_warmup_in_two_processes_reports_every_family_once_and_marks_warm(tmp_path):
@@ -322,21 +344,26 @@ def test_compiles_are_counted_while_listened_to():
 
 
 def test_many_lessons_on_a_cold_cache_say_how_the_warmup_goes(monkeypatch, capsys):
-    # `sandbox lessons` for more than one lesson compiles first, with the warmup's report
-    # (a bar on a terminal, a line per family elsewhere), not --quiet: a minute is never a
-    # silent wait
+    # `sandbox lessons` for more than one lesson compiles what the lessons need first, with the
+    # warmup's report (a bar on a terminal, a line per family elsewhere), not --quiet: a minute
+    # is never a silent wait; the rest follows in the background after the lessons
     from sandbox.cli import lessons
 
-    calls = []
+    calls, started = [], []
     monkeypatch.delenv("SANDBOX_JIT", raising=False)
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
     monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
-    lessons._compile_first(lessons.FEW + 1)
+    monkeypatch.setattr(first_run, "start_background_warmup", lambda f: started.append(f) or True)
+    rest = lessons._compile_first(lessons.FEW + 1)
     if compile_cache.CACHE_FOLDER is None:
-        assert calls == []
+        assert calls == [] and not rest
         return
-    assert calls == [[sys.executable, "-m", "sandbox", "warmup"]]
-    assert "compiling the engine for this machine first" in capsys.readouterr().out
+    assert calls == [[sys.executable, "-m", "sandbox", "warmup", "--lessons"]] and rest
+    assert "compiling what the lessons need for this machine first" in capsys.readouterr().out
+    assert started == []  # not before the lessons, which need both cores
+    lessons._compile_rest()
+    assert started == [compile_cache.CACHE_FOLDER]
+    assert "the rest of the engine compiles in the background" in capsys.readouterr().out
 
 
 def test_one_lesson_on_a_cold_cache_compiles_what_it_needs(monkeypatch, capsys):
@@ -430,7 +457,7 @@ def test_the_warmup_in_a_log_says_no_compile_notice():
         "import sandbox.warmup as w\n"
         "from sandbox import jit\n"
         "from sandbox.cli import main\n"
-        "w.warm_up = lambda report, jobs: jit.njit(cache=False)(lambda x: x + 1)(1) or 0.0\n"
+        "w.warm_up = lambda report, jobs, lessons: jit.njit(cache=False)(lambda x: x + 1)(1) or 0.0\n"
         "raise SystemExit(main(['warmup']))\n"
     )
     env = {**os.environ, "SANDBOX_JIT": "1"}

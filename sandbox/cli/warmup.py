@@ -12,6 +12,7 @@ JOBS = Field("jobs", "integer", "processes compiling at a time", None, "", lo=1,
 EXAMPLES = """examples:
   sandbox warmup            # once after installing, or after an upgrade: one to two minutes
   sandbox warmup --jobs 1   # in one process (the default shares it between two cores)
+  sandbox warmup --lessons  # only what the bundled lessons need (about a minute)
 """
 
 
@@ -30,6 +31,12 @@ def add_parser(sub) -> None:
         "--jobs",
         type=field_type(JOBS, "--jobs"),
         help="processes to share the compiling between (default: 2 on two cores or more)",
+    )
+    cmd.add_argument(
+        "--lessons",
+        action="store_true",
+        help="compile only what the bundled lessons need (a first `sandbox lessons` does this, "
+        "then the rest in the background); the cache is not marked warm",
     )
     cmd.add_argument("--part", type=_part, help=argparse.SUPPRESS)  # I/N: one share, unmarked
     cmd.set_defaults(func=run)
@@ -57,10 +64,10 @@ def run(args: argparse.Namespace) -> int:
 
     quiet_compiles()
     if args.part is not None:  # a share of another warmup, which marks the cache warm
-        warm_part(*args.part, (lambda line: None) if args.quiet else _print)
+        warm_part(*args.part, (lambda line: None) if args.quiet else _print, args.lessons)
         return 0
     if args.quiet:
-        warm_up(lambda line: None, args.jobs)
+        warm_up(lambda line: None, args.jobs, args.lessons)
         return 0
     from sandbox.cli.first_run import wait_for_warmup
     from sandbox.compile_cache import CACHE_FOLDER
@@ -68,11 +75,12 @@ def run(args: argparse.Namespace) -> int:
     wait_for_warmup(CACHE_FOLDER)  # then this one loads what it compiled
     print(f"compiling the engine into {where()}", flush=True)
     if sys.stderr.isatty():
-        with FamilyBar(sys.stderr) as bar:
-            seconds = warm_up(bar.ready, args.jobs)
+        with FamilyBar(sys.stderr, lessons=args.lessons) as bar:
+            seconds = warm_up(bar.ready, args.jobs, args.lessons)
     else:
-        seconds = warm_up(_print, args.jobs)
-    print(f"done in {seconds:.1f} s: every kernel is compiled", flush=True)
+        seconds = warm_up(_print, args.jobs, args.lessons)
+    what = "the lessons' kernels are" if args.lessons else "every kernel is"
+    print(f"done in {seconds:.1f} s: {what} compiled", flush=True)
     return 0
 
 
@@ -86,14 +94,14 @@ class FamilyBar:
     (:func:`sandbox.warmup.warm_up`'s report), showing the last family ready and how many
     kernels this process has compiled: the first family alone compiles for most of a minute."""
 
-    def __init__(self, screen, tick: float = 1.0) -> None:
+    def __init__(self, screen, tick: float = 1.0, lessons: bool = False) -> None:
         from sandbox.cli.progress import TickingBar
         from sandbox.jit import CompileCount
         from sandbox.warmup import worlds
 
         self.kernels = CompileCount()
         self.last = ""
-        total = sum(1 for _ in worlds())
+        total = sum(1 for _ in worlds(lessons))
         self.bar = TickingBar(screen, total, "families", self._postfix, tick)
 
     def _postfix(self) -> str:
