@@ -44,7 +44,8 @@ def course(tmp_path_factory):
     WARM_BEFORE["cache"] = compile_cache.is_warm()
     os.environ[figure_standard.ENV] = "1"  # save_figure raises on a figure that breaks it
     try:
-        with tempfile.TemporaryDirectory() as tmp, kernels(Path(tmp), outputs) as specs:
+        engine = WARM_BEFORE["cache"]  # as `sandbox lessons`: the steps loaded once, if compiled
+        with tempfile.TemporaryDirectory() as tmp, kernels(Path(tmp), outputs, engine) as specs:
             logs = Path(tmp) / "compiles"  # as `sandbox lessons`: compiles counted, not shown
             logs.mkdir()
             with ThreadPoolExecutor(max_workers=2) as pool:

@@ -16,6 +16,7 @@ pytest.importorskip("jupyter_client")
 from jupyter_client.kernelspec import KernelSpecManager  # noqa: E402
 from jupyter_client.manager import KernelManager  # noqa: E402
 
+from sandbox import compile_cache  # noqa: E402
 from sandbox.compile_cache import COMPILE_LOG  # noqa: E402
 from sandbox.course import prefork  # noqa: E402
 
@@ -212,3 +213,23 @@ def test_the_server_exits_when_the_command_that_started_it_is_gone(tmp_path):
     if not gone(pid, 15.0):
         os.kill(pid, 9)
         pytest.fail("the server outlived the command that started it by 15 s")
+
+
+@pytest.mark.skipif(not compile_cache.is_warm(), reason="the steps are not compiled yet")
+def test_with_the_engine_a_kernel_starts_with_the_steps_loaded(tmp_path):
+    # `sandbox lessons` on a compiled machine: the server loads the one-call steps from the
+    # cache once, and every kernel has them (no loading of its own); without, none has
+    address = tmp_path / "engine"
+    code = (
+        "from sandbox import step\n"
+        "print(len(step.fast_step.signatures), len(step.soft_step.signatures))"
+    )
+    for engine in (True, False):
+        with prefork.Server(address, dict(os.environ), engine=engine):
+            specs = prefork.write_spec(tmp_path / f"kernels-{engine}", address)
+            manager, client = start(specs, tmp_path)
+            try:
+                loaded = [int(n) for n in run(client, code)["out"].split()]
+            finally:
+                stop(manager, client)
+        assert all(loaded) if engine else not any(loaded), (engine, loaded)

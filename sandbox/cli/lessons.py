@@ -191,12 +191,14 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     """
     from contextlib import ExitStack
 
+    from sandbox.compile_cache import is_warm
     from sandbox.course.runner import Outcome, compiled_in, kernels, run_notebook, run_script
 
     rest = _compile_first(len(chosen))
     with ExitStack() as stack:
         tmp = stack.enter_context(tempfile.TemporaryDirectory(prefix="sandbox-kernel-"))
-        specs = stack.enter_context(kernels(Path(tmp), outputs)) if notebooks else None
+        engine = rest or is_warm()  # the steps are in the cache: kernels start with them
+        specs = stack.enter_context(kernels(Path(tmp), outputs, engine)) if notebooks else None
         logs = Path(tmp) / "compiles"
         logs.mkdir()
 

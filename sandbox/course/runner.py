@@ -125,19 +125,21 @@ def kernel_specs(folder: Path) -> Path:
 
 
 @contextmanager
-def kernels(folder: Path, outputs: Path) -> Iterator[Path]:
+def kernels(folder: Path, outputs: Path, engine: bool = False) -> Iterator[Path]:
     """Kernel specs under ``folder`` for executing lessons that write into ``outputs``, while
     the ``with`` block lasts: kernels forked from one process that has imported the course's
     libraries (:mod:`sandbox.course.prefork`) where processes fork, else ordinary kernels
-    (:func:`kernel_specs`). Start it after setting anything in the environment the lessons
-    should see: the forking process takes the environment it starts with."""
+    (:func:`kernel_specs`); ``engine``: the engine's compiled steps are in the cache, and the
+    forked kernels start with them loaded (:func:`sandbox.course.prefork.load_engine`). Start
+    it after setting anything in the environment the lessons should see: the forking process
+    takes the environment it starts with."""
     from sandbox.course import prefork
 
     if not prefork.available():
         yield kernel_specs(folder)
         return
     address = folder / "prefork"
-    with prefork.Server(address, lesson_env(outputs)):
+    with prefork.Server(address, lesson_env(outputs), engine):
         yield prefork.write_spec(folder / "kernels", address)
 
 
