@@ -251,8 +251,8 @@ def record_kernels() -> None:
 
 
 # two shares: the first's families, in this order; the second takes the others, the families of
-# SECOND_SHARE_FIRST first (continuous collision and the other rigid solvers, which reuse the
-# stages both shares compiled)
+# SECOND_SHARE_FIRST first (the integrators with forces, continuous collision and the other
+# rigid solvers, which reuse the stages both shares compiled)
 FIRST_SHARE = (
     "iterative solver",
     "iterative solver, staged",

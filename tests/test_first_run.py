@@ -457,7 +457,9 @@ def test_the_warmup_in_a_log_says_no_compile_notice():
         "import sandbox.warmup as w\n"
         "from sandbox import jit\n"
         "from sandbox.cli import main\n"
-        "w.warm_up = lambda report, jobs, lessons: jit.njit(cache=False)(lambda x: x + 1)(1) or 0.0\n"
+        "w.warm_up = lambda report, jobs, lessons: (\n"
+        "    jit.njit(cache=False)(lambda x: x + 1)(1) or 0.0\n"
+        ")\n"
         "raise SystemExit(main(['warmup']))\n"
     )
     env = {**os.environ, "SANDBOX_JIT": "1"}

@@ -314,6 +314,5 @@ if __name__ == "__main__":
     elif sys.argv[1:2] == ["launch"]:
         sys.exit(launch(sys.argv[2], sys.argv[3], sys.argv[4:]))
     else:
-        sys.exit(
-            "usage: python -m sandbox.course.prefork serve ADDRESS PID [engine] | launch ADDRESS FILE"
-        )
+        usage = "serve ADDRESS PID [engine] | launch ADDRESS FILE [OPTION ...]"
+        sys.exit(f"usage: python -m sandbox.course.prefork {usage}")

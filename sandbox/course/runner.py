@@ -128,7 +128,7 @@ def kernel_specs(folder: Path) -> Path:
 def kernels(folder: Path, outputs: Path, engine: bool = False) -> Iterator[Path]:
     """Kernel specs under ``folder`` for executing lessons that write into ``outputs``, while
     the ``with`` block lasts: kernels forked from one process that has imported the course's
-    libraries (:mod:`sandbox.course.prefork`) where processes fork, else ordinary kernels
+    libraries (:mod:`sandbox.course.prefork`) on Linux, else ordinary kernels
     (:func:`kernel_specs`); ``engine``: the engine's compiled steps are in the cache, and the
     forked kernels start with them loaded (:func:`sandbox.course.prefork.load_engine`). Start
     it after setting anything in the environment the lessons should see: the forking process
@@ -146,10 +146,10 @@ def kernels(folder: Path, outputs: Path, engine: bool = False) -> Iterator[Path]
 def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None = None) -> Outcome:
     """Execute the lesson as a notebook and write ``NN_name.ipynb`` and ``NN_name.html``.
 
-    ``specs`` is the folder of :func:`kernels` (or :func:`kernel_specs`). A failing cell stops the run; the notebook
-    and page are still written, showing the error where it happened. With ``logs`` (a folder),
-    the kernels it compiles are counted there (:func:`compile_log`), and no compile notice
-    lands in the notebook.
+    ``specs`` is the folder of :func:`kernels` (or :func:`kernel_specs`). A failing cell stops
+    the run; the notebook and page are still written, showing the error where it happened.
+    With ``logs`` (a folder), the kernels it compiles are counted there (:func:`compile_log`),
+    and no compile notice lands in the notebook.
     """
     import jupytext
     import nbclient
