@@ -165,21 +165,34 @@ def serve(address: str, parent: int, engine: bool = False) -> None:
 
 
 def load_engine() -> None:
-    """Load from the cache the compiled steps most lessons take (the iterative solver in one
-    call and stage by stage, the soft step), stepping a small world of each once, so that every
-    kernel starts with them: about 0.4 s of CPU a lesson otherwise. Only when the cache holds
-    them (the caller knows): else this process would compile them, for a minute."""
-    from sandbox.step import StageTimer
-    from sandbox.warmup import sample_world
+    """Load from the cache what the lessons run, so that every kernel starts with it: each
+    family of :data:`sandbox.warmup.LESSON_FAMILIES`, stepped once on a small world (the
+    iterative and soft steps in one call and stage by stage, the other solvers, continuous
+    collision, the integrators with forces), and the kernels lessons call on their own
+    (:func:`sandbox.warmup.helpers`); then a first figure drawn, which loads the fonts and
+    mathtext's parser. A kernel otherwise loads its share itself, lesson after lesson. Only
+    when the cache holds them (the caller knows): else this process would compile them, for a
+    minute."""
+    from io import BytesIO
 
-    for solver, staged in (("iterative", False), ("iterative", True), ("soft", False)):
-        world = sample_world(solver=solver)
-        if staged:
-            world.timer = StageTimer()
-        try:
-            world.step()
-        except Exception:  # a kernel loads it itself (or reports why it cannot)
-            pass
+    import matplotlib.pyplot as plt
+
+    from sandbox.warmup import helpers, step, worlds
+
+    try:
+        for _, world, staged in worlds(lessons=True):
+            step(world, staged=staged)
+            world.find_contacts()
+        helpers()
+    except Exception:  # a kernel loads it itself (or reports why it cannot)
+        pass
+    fig, ax = plt.subplots()
+    ax.plot([0.0, 1.0], [0.0, 1.0], label="$v_0$")
+    ax.set(title="$e^2 h$", xlabel="t (s)", yscale="log")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(BytesIO(), format="png")
+    plt.close(fig)
 
 
 def _receive(connection: socket.socket) -> tuple[dict, list[int]]:
