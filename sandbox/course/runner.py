@@ -10,6 +10,7 @@ import importlib.util
 import os
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -24,6 +25,7 @@ NOTEBOOK_TOOLS = ("jupytext", "nbformat", "nbclient", "ipykernel", "nbconvert")
 INSTALL_HINT = "pip install 'physics-sandbox[notebook]'"
 MADE = (".png", ".gif", ".md", ".ipynb", ".html", ".txt", ".csv", ".json")  # what lessons write
 CELL_TIMEOUT = 600  # s, one cell of one lesson
+_stopping: list[threading.Thread] = []  # kernels being stopped (joined when kernels() ends)
 
 
 @dataclass
@@ -135,12 +137,16 @@ def kernels(folder: Path, outputs: Path, engine: bool = False) -> Iterator[Path]
     takes the environment it starts with."""
     from sandbox.course import prefork
 
-    if not prefork.available():
-        yield kernel_specs(folder)
-        return
-    address = folder / "prefork"
-    with prefork.Server(address, lesson_env(outputs), engine):
-        yield prefork.write_spec(folder / "kernels", address)
+    try:
+        if not prefork.available():
+            yield kernel_specs(folder)
+            return
+        address = folder / "prefork"
+        with prefork.Server(address, lesson_env(outputs), engine):
+            yield prefork.write_spec(folder / "kernels", address)
+    finally:
+        while _stopping:  # every kernel the lessons ran in has exited
+            _stopping.pop().join()
 
 
 def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None = None) -> Outcome:
@@ -177,6 +183,7 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None =
     manager = KernelManager(
         kernel_name="python3",
         kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(specs)], ensure_native_kernel=False),
+        client_class="sandbox.course.kernel_client.ReadyClient",  # ready sooner
     )
     if os.name == "posix":  # local sockets in the private folder rather than TCP ports
         manager.transport, manager.ip = "ipc", str(specs.parent / lesson.stem)
@@ -196,8 +203,10 @@ def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None =
     except Exception as err:  # a kernel that died or timed out
         error = f"{type(err).__name__}: {' '.join(str(err).split())[:300]}"
     finally:
-        if manager.has_kernel:
-            manager.shutdown_kernel(now=True)
+        if manager.has_kernel:  # stopped beside the next lesson (it waits 0.1 s for the exit)
+            stopping = threading.Thread(target=manager.shutdown_kernel, kwargs={"now": True})
+            stopping.start()
+            _stopping.append(stopping)
     settle(nb)
     notebook = folder / f"{lesson.stem}.ipynb"
     atomic_write_text(notebook, nbformat.writes(nb) + "\n")
