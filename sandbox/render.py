@@ -153,9 +153,7 @@ def render_gif(
 
         def quantized(indices: Sequence[int]) -> Iterator[Image.Image]:
             for k in indices:
-                yield Image.fromarray(renderer.frame(k)).quantize(
-                    palette=palette, dither=Image.Dither.NONE
-                )
+                yield renderer.image(k).quantize(palette=palette, dither=Image.Dither.NONE)
                 bar.update()
 
         head = Image.fromarray(first).quantize(palette=palette, dither=Image.Dither.NONE)

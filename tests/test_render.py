@@ -177,7 +177,7 @@ def test_runs_are_overlaid_in_distinct_colours(tmp_path):
 
 def test_failing_render_leaves_no_file(tmp_path, monkeypatch):
     rec = moving_ball(frames=6)
-    original = render.FrameRenderer.frame
+    original = render.FrameRenderer._draw  # every frame is drawn here, as pixels or an image
     calls = []
 
     def flaky(self, k):
@@ -186,7 +186,7 @@ def test_failing_render_leaves_no_file(tmp_path, monkeypatch):
             raise RuntimeError("disk on fire")
         return original(self, k)
 
-    monkeypatch.setattr(render.FrameRenderer, "frame", flaky)
+    monkeypatch.setattr(render.FrameRenderer, "_draw", flaky)
     target = tmp_path / "out.gif"
     with pytest.raises(RuntimeError, match="disk on fire"):
         render_gif(rec, target, size_px=64)
@@ -368,3 +368,16 @@ def test_legend_is_laid_over_the_bodies_as_agg_would_draw_it():
         ball = np.abs(under - 255).max(axis=2) > 40  # the ball's pixels under the legend
         assert ball.sum() > 20
         assert (np.abs(box - 255).max(axis=2)[ball] > 10).mean() > 0.5  # seen through it
+
+
+def test_an_animations_images_are_its_frames_pixels():
+    # render_gif takes each frame as an image from the canvas (FrameRenderer.image); the
+    # pixels are frame()'s, the legend laid over them included, frame after frame (the legend
+    # is composited onto the canvas itself, which the next frame restores)
+    runs = [moving_ball(frames=4), moving_ball(frames=4, x0=0.5)]
+    with render.FrameRenderer(runs, size_px=96, labels=["left", "right"]) as renderer:
+        assert renderer.legend_layer is not None and not renderer.legend_layer.empty
+        for k in (0, 1, 2, 3, 1):
+            image = renderer.image(k)
+            assert image.mode == "RGB"
+            assert np.array_equal(np.asarray(image), renderer.frame(k)), k
