@@ -70,6 +70,9 @@ def _show(value: Any) -> str:
 
 
 def _is_number(value: Any) -> bool:
+    kind = type(value)
+    if kind is float or kind is int:  # the usual case, without the slower check against the ABC
+        return True
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
@@ -99,16 +102,8 @@ def _number(
     ``gt`` / ``ge`` / ``le`` are the sign rule (a length is > 0); ``[lo, hi]`` (in ``unit``) the
     physical range, checked after it with its own message.
     """
-    if gt is not None:
-        expected = f"a number > {_bound(gt)}"
-    elif ge is not None and le is not None:
-        expected = f"a number in [{_bound(ge)}, {_bound(le)}]"
-    elif ge is not None:
-        expected = f"a number >= {_bound(ge)}"
-    else:
-        expected = "a number"
     if not _is_number(value):
-        raise SceneError(path, f"expected {expected}, got {_show(value)}")
+        raise SceneError(path, f"expected {_expected(gt, ge, le)}, got {_show(value)}")
     try:
         x = float(value)
     except OverflowError:
@@ -120,7 +115,7 @@ def _number(
         or (ge is not None and not x >= ge)
         or (le is not None and not x <= le)
     ):
-        raise SceneError(path, f"expected {expected}, got {_show(value)}")
+        raise SceneError(path, f"expected {_expected(gt, ge, le)}, got {_show(value)}")
     if (lo is not None and x < lo) or (hi is not None and x > hi):
         where = f"[{_bound(lo)}, {_bound(hi)}]" if lo is not None and hi is not None else ""
         if not where:
@@ -128,6 +123,17 @@ def _number(
         shown = f" {unit}" if unit else ""
         raise SceneError(path, f"expected a number in {where}{shown}, got {_show(value)}")
     return x
+
+
+def _expected(gt: float | None, ge: float | None, le: float | None) -> str:
+    """What :func:`_number` expected, for its message (made only when a value is wrong)."""
+    if gt is not None:
+        return f"a number > {_bound(gt)}"
+    if ge is not None and le is not None:
+        return f"a number in [{_bound(ge)}, {_bound(le)}]"
+    if ge is not None:
+        return f"a number >= {_bound(ge)}"
+    return "a number"
 
 
 def _integer(value: Any, path: str, lo: int, hi: int) -> int:
