@@ -230,7 +230,7 @@ def test_lessons_after_a_background_warmup_do_not_warm_up_again(monkeypatch, cap
     calls, warm = [], [False]
     monkeypatch.delenv("SANDBOX_JIT", raising=False)
     monkeypatch.setattr(compile_cache, "is_warm", lambda: warm[0])
-    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
+    monkeypatch.setattr(subprocess, "Popen", lambda args, **kw: calls.append(args))
     monkeypatch.setattr(
         first_run, "wait_for_warmup", lambda folder: warm.__setitem__(0, True) or True
     )
@@ -352,13 +352,14 @@ def test_many_lessons_on_a_cold_cache_say_how_the_warmup_goes(monkeypatch, capsy
     calls, started = [], []
     monkeypatch.delenv("SANDBOX_JIT", raising=False)
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
-    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
+    monkeypatch.setattr(subprocess, "Popen", lambda args, **kw: calls.append(args) or "started")
     monkeypatch.setattr(first_run, "start_background_warmup", lambda f: started.append(f) or True)
     rest = lessons._compile_first(lessons.FEW + 1)
     if compile_cache.CACHE_FOLDER is None:
-        assert calls == [] and not rest
+        assert calls == [] and rest is None
         return
-    assert calls == [[sys.executable, "-m", "sandbox", "warmup", "--lessons"]] and rest
+    assert calls == [[sys.executable, "-m", "sandbox", "warmup", "--lessons"]]
+    assert rest == "started"  # the warmup's process, which the lessons wait for
     assert "compiling what the lessons need for this machine first" in capsys.readouterr().out
     assert started == []  # not before the lessons, which need both cores
     lessons._compile_rest()
@@ -375,9 +376,9 @@ def test_one_lesson_on_a_cold_cache_compiles_what_it_needs(monkeypatch, capsys):
     calls, background = [], []
     monkeypatch.delenv("SANDBOX_JIT", raising=False)
     monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
-    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
+    monkeypatch.setattr(subprocess, "Popen", lambda args, **kw: calls.append(args))
     monkeypatch.setattr(first_run, "start_background_warmup", lambda f: background.append(f) or 1)
-    lessons._compile_first(lessons.FEW)
+    assert lessons._compile_first(lessons.FEW) is None
     assert calls == []
     out = capsys.readouterr().out
     if compile_cache.CACHE_FOLDER is not None:
@@ -393,8 +394,8 @@ def test_a_warm_cache_runs_the_lessons_at_once(monkeypatch, capsys):
 
     calls = []
     monkeypatch.setattr(compile_cache, "is_warm", lambda: True)
-    monkeypatch.setattr(subprocess, "run", lambda args, **kw: calls.append(args))
-    lessons._compile_first(19)
+    monkeypatch.setattr(subprocess, "Popen", lambda args, **kw: calls.append(args))
+    assert lessons._compile_first(19) is None
     assert calls == [] and capsys.readouterr().out == ""
 
 
@@ -519,3 +520,59 @@ def test_the_wait_shows_its_line_and_the_time_so_far_redrawn_every_tick():
     drawn = [d for d in screen.getvalue().split("\r") if d.strip()]
     assert len(drawn) >= 3  # drawn when it starts, then at least twice by the ticker
     assert all(d == "waiting for the background warmup [00:00]" for d in drawn)
+
+
+def test_lessons_without_kernels_run_beside_the_warmup(monkeypatch, tmp_path):
+    # a first `sandbox lessons`: lesson 15 starts while the warmup compiles, every other lesson
+    # once it is done (and the kernels' server has loaded what it compiled)
+    from sandbox.cli import lessons
+    from sandbox.course import runner
+    from sandbox.course.catalogue import find_lessons
+
+    chosen = find_lessons(Path(__file__).resolve().parent.parent / "lessons")
+    started, done = [], []
+
+    class Warmup:  # the warmup's process: done once an early lesson has started (or 10 s)
+        def wait(self):
+            deadline = time.monotonic() + 10.0
+            while not started and time.monotonic() < deadline:
+                time.sleep(0.01)
+            done.append(True)
+            return 0
+
+    def run_script(lesson, outputs, logs=None):
+        started.append((lesson.stem, bool(done)))
+        return runner.Outcome(lesson, 0.0)
+
+    monkeypatch.setattr(lessons, "_compile_first", lambda chosen: Warmup())
+    monkeypatch.setattr(lessons, "_compile_rest", lambda: None)
+    monkeypatch.setattr(runner, "run_script", run_script)
+    outcomes = lessons._run_all(chosen, tmp_path, notebooks=False, jobs=2)
+    assert [o.lesson.stem for o in outcomes] == [lesson.stem for lesson in chosen]
+    early = [stem for stem, after in started if not after]
+    assert early == list(lessons.WITHOUT_KERNELS)
+    assert sorted(stem for stem, _ in started) == sorted(lesson.stem for lesson in chosen)
+
+
+def test_the_lessons_without_kernels_call_none(tmp_path):
+    # they run beside the warmup, which must not have to wait for them to compile or load a
+    # kernel: run as a script, not one numba dispatcher is compiled or loaded from the cache
+    root = Path(__file__).resolve().parent.parent
+    from sandbox.cli.lessons import WITHOUT_KERNELS
+
+    driver = (  # every compiled function of the engine that has a version ready afterwards
+        "import runpy, sys\n"
+        "from numba.core.registry import CPUDispatcher\n"
+        "runpy.run_path(sys.argv[1], run_name='__main__')\n"
+        "names = {f'{m}.{k}' for m, module in list(sys.modules.items()) if m.startswith('sandbox')\n"
+        "         for k, v in vars(module).items() if isinstance(v, CPUDispatcher) and v.overloads}\n"
+        "print('DISPATCHED', sorted(names))\n"
+    )
+    env = {**os.environ, "SANDBOX_OUTPUTS": str(tmp_path), "MPLBACKEND": "Agg"}
+    for stem in WITHOUT_KERNELS:
+        script = root / "lessons" / f"{stem}.py"
+        done = subprocess.run(
+            [sys.executable, "-c", driver, str(script)], env=env, capture_output=True, text=True
+        )
+        assert done.returncode == 0, done.stderr[-2000:]
+        assert done.stdout.splitlines()[-1] == "DISPATCHED []", (stem, done.stdout[-500:])

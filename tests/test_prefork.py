@@ -233,3 +233,27 @@ def test_with_the_engine_a_kernel_starts_with_the_steps_loaded(tmp_path):
             finally:
                 stop(manager, client)
         assert all(loaded) if engine else not any(loaded), (engine, loaded)
+
+
+@pytest.mark.skipif(not compile_cache.is_warm(), reason="the steps are not compiled yet")
+def test_a_server_loads_the_engine_when_asked(tmp_path):
+    # a first `sandbox lessons`: the server starts while the warmup compiles and loads the
+    # engine once asked (request_engine); kernels forked after that start with it
+    address = tmp_path / "later"
+    code = (
+        "from sandbox import step\n"
+        "print(len(step.fast_step.signatures), len(step.soft_step.signatures))"
+    )
+    loaded = []
+    with prefork.Server(address, dict(os.environ)):
+        specs = prefork.write_spec(tmp_path / "kernels", address)
+        for ask in (False, True):
+            if ask:
+                assert prefork.request_engine(address)
+            manager, client = start(specs, tmp_path)
+            try:
+                loaded.append([int(n) for n in run(client, code)["out"].split()])
+            finally:
+                stop(manager, client)
+    assert not any(loaded[0]) and all(loaded[1]), loaded
+    assert not prefork.request_engine(tmp_path / "no-server")  # nothing listens: False

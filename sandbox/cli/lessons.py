@@ -16,6 +16,9 @@ from sandbox.fieldspec import Field
 
 JOBS = Field("jobs", "integer", "lessons run at a time", None, "", lo=1, hi=64)
 FEW = 1  # lessons that compile what they need as they run, on a first run (no warmup first)
+# lessons that call no compiled kernel (tests/test_lessons.py checks it): on a first run they go
+# beside the warmup, on the core its second process leaves idle before the first is done
+WITHOUT_KERNELS = ("15_rotation_3d",)
 
 
 def add_parser(sub) -> None:
@@ -109,12 +112,13 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _compile_first(chosen: int) -> bool:
+def _compile_first(chosen: int):
     """On a machine where the engine was never compiled: for more than :data:`FEW` lesson,
-    compile what the lessons need once before them (``sandbox warmup --lessons``: on a
+    start compiling what the lessons need once before them (``sandbox warmup --lessons``: on a
     terminal its progress bar, elsewhere a line per family of kernels ready), rather than in
     each lesson's process, the same kernels at the same time; the rest of the engine is left
-    for a background warmup after the lessons (:func:`_compile_rest`). Returns whether it is.
+    for a background warmup after the lessons (:func:`_compile_rest`). Returns the warmup's
+    process (the lessons wait for it, but for :data:`WITHOUT_KERNELS`), or None.
     A single lesson compiles what it needs itself as it runs, while the warmup compiles the
     rest in the background at a low priority (as a small scene's first run does,
     :func:`sandbox.cli.first_run.start_background_warmup`): on two cores it takes the other
@@ -137,7 +141,7 @@ def _compile_first(chosen: int) -> bool:
     from sandbox.compile_cache import CACHE_FOLDER, is_warm
 
     if os.environ.get("SANDBOX_JIT") == "0" or CACHE_FOLDER is None or is_warm():
-        return False
+        return None
     if chosen <= FEW:
         from sandbox.cli.first_run import start_background_warmup
 
@@ -151,18 +155,17 @@ def _compile_first(chosen: int) -> bool:
             f"needs as it runs, once{later}",
             flush=True,
         )
-        return False
+        return None
     from sandbox.cli.first_run import wait_for_warmup
 
     if wait_for_warmup(CACHE_FOLDER) and is_warm():
-        return False
+        return None
     print(
         "compiling what the lessons need for this machine first, once (about a minute; the "
         "rest of the engine compiles in the background after them)",
         flush=True,
     )
-    subprocess.run([sys.executable, "-m", "sandbox", "warmup", "--lessons"], check=False)
-    return True
+    return subprocess.Popen([sys.executable, "-m", "sandbox", "warmup", "--lessons"])
 
 
 def _compile_rest() -> None:
@@ -188,16 +191,30 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     on one long lesson. Each lesson writes only its own folder, so the outputs do not depend on
     ``jobs`` or the order. The kernels a lesson compiles are counted in a log
     (:func:`sandbox.course.runner.compile_log`) rather than announced in its page.
+
+    While the warmup compiles, the lessons' kernel server imports its libraries, and the
+    lessons that call no compiled kernel (:data:`WITHOUT_KERNELS`) run: the warmup's two
+    processes do not finish together, and the lessons' first kernels would otherwise wait for
+    the server. The server loads the compiled engine once the warmup is done.
     """
     from contextlib import ExitStack
 
     from sandbox.compile_cache import is_warm
-    from sandbox.course.runner import Outcome, compiled_in, kernels, run_notebook, run_script
+    from sandbox.course.runner import (
+        Outcome,
+        compiled_in,
+        kernels,
+        load_engine,
+        run_notebook,
+        run_script,
+    )
 
-    rest = _compile_first(len(chosen))
+    warmup = _compile_first(len(chosen))
     with ExitStack() as stack:
         tmp = stack.enter_context(tempfile.TemporaryDirectory(prefix="sandbox-kernel-"))
-        engine = rest or is_warm()  # the steps are in the cache: kernels start with them
+        # kernels start with the compiled engine: at once when it is in the cache, else once
+        # the warmup has compiled it (the server imports its libraries meanwhile)
+        engine = warmup is None and is_warm()
         specs = stack.enter_context(kernels(Path(tmp), outputs, engine)) if notebooks else None
         logs = Path(tmp) / "compiles"
         logs.mkdir()
@@ -215,10 +232,20 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
             return f"{count} kernels compiled" if count else ""
 
         longest_first = sorted(chosen, key=lambda lesson: -lesson.path.stat().st_size)
-        with LessonBar(len(chosen), compiled) as bar, ThreadPoolExecutor(jobs) as pool:
-            running = {lesson.stem: pool.submit(one, lesson) for lesson in longest_first}
-            outcomes = [bar.report(running[lesson.stem].result()) for lesson in chosen]
-    if rest:
+        with ThreadPoolExecutor(jobs) as pool:
+            running = {}
+            if warmup is not None:  # lessons that need none of it go beside the warmup
+                for lesson in longest_first:
+                    if lesson.stem in WITHOUT_KERNELS:
+                        running[lesson.stem] = pool.submit(one, lesson)
+                if warmup.wait() == 0 and specs is not None:
+                    load_engine(specs)
+            for lesson in longest_first:
+                if lesson.stem not in running:
+                    running[lesson.stem] = pool.submit(one, lesson)
+            with LessonBar(len(chosen), compiled) as bar:
+                outcomes = [bar.report(running[lesson.stem].result()) for lesson in chosen]
+    if warmup is not None:
         _compile_rest()
     return outcomes
 

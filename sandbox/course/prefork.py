@@ -149,6 +149,10 @@ def serve(address: str, parent: int, engine: bool = False) -> None:
         except (OSError, ValueError):
             connection.close()
             continue
+        if request.get("engine"):  # the lessons' kernels are compiled now (request_engine)
+            load_engine()
+            _reply(connection, "loaded")
+            continue
         pid = 0  # none forked: the launcher starts an ordinary kernel
         if _imported_with(request["env"]) == _imported_with(os.environ):
             pid = os.fork()
@@ -157,11 +161,32 @@ def serve(address: str, parent: int, engine: bool = False) -> None:
                 _kernel(connection, request, fds)  # never returns
         for fd in fds:
             os.close(fd)
-        try:
-            connection.sendall(f"{pid}\n".encode())
-        except OSError:
-            pass
-        connection.close()
+        _reply(connection, str(pid))
+
+
+def _reply(connection: socket.socket, line: str) -> None:
+    """Answer one request with a line, and close the connection."""
+    try:
+        connection.sendall(f"{line}\n".encode())
+    except OSError:
+        pass
+    connection.close()
+
+
+def request_engine(address: Path, timeout: float = 120.0) -> bool:
+    """Have the server at ``address`` load the compiled engine now (:func:`load_engine`), once
+    what the lessons need is in the cache: a server started while it was being compiled
+    (``sandbox lessons`` on a new machine) imports its libraries meanwhile. Returns when the
+    server has loaded it (whether it answered): kernels asked for in the meantime wait, and
+    start with it."""
+    try:
+        with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as connection:
+            connection.settimeout(timeout)
+            connection.connect(str(address))
+            connection.sendall(b'{"engine": true}\n')
+            return connection.recv(64).startswith(b"loaded")
+    except OSError:
+        return False
 
 
 def load_engine() -> None:
@@ -197,16 +222,18 @@ def load_engine() -> None:
 
 def _receive(connection: socket.socket) -> tuple[dict, list[int]]:
     """One request: a JSON line (connection file, options, folder, environment) and three
-    descriptors (the launcher's standard streams)."""
+    descriptors (the launcher's standard streams); or ``{"engine": true}`` alone
+    (:func:`request_engine`)."""
     data, fds, _, _ = socket.recv_fds(connection, 1 << 20, 3)
     while not data.endswith(b"\n"):
         more = connection.recv(1 << 20)
         if not more:
             raise ValueError("request cut short")
         data += more
-    if len(fds) != 3:
+    request = json.loads(data)
+    if len(fds) != 3 and not request.get("engine"):
         raise ValueError("expected three descriptors")
-    return json.loads(data), fds
+    return request, fds
 
 
 def _kernel(connection: socket.socket, request: dict, fds: list[int]) -> None:

@@ -149,6 +149,17 @@ def kernels(folder: Path, outputs: Path, engine: bool = False) -> Iterator[Path]
             _stopping.pop().join()
 
 
+def load_engine(specs: Path) -> None:
+    """Have the kernels of :func:`kernels` (``specs``, started with ``engine`` False) start with
+    the compiled engine from now on, once what the lessons need is in the cache
+    (:func:`sandbox.course.prefork.request_engine`; nothing where kernels are not forked)."""
+    from sandbox.course import prefork
+
+    address = specs.parent / "prefork"
+    if prefork.available() and address.exists():
+        prefork.request_engine(address)
+
+
 def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None = None) -> Outcome:
     """Execute the lesson as a notebook and write ``NN_name.ipynb`` and ``NN_name.html``.
 
