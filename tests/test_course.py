@@ -285,6 +285,23 @@ def test_link_check_finds_missing_files_and_network_loads(tmp_path):
     assert len(book_problems(index)) == 4
 
 
+def test_link_check_still_sees_links_and_styles_inside_highlighted_code(tmp_path):
+    # plain class-only spans (most of a page's tags: the highlighted code) are left out before
+    # parsing; a span with a style, and a link or image among spans, are still checked
+    page = tmp_path / "p.html"
+    page.write_text(
+        '<pre><span class="k">import</span> <span class="n">x</span></pre>'
+        '<span class="c"><img src="gone.png"></span>'
+        '<span class="x" style="background: url(https://x.example/b.png)">b</span>'
+        '<span class="c"><a href="missing.html">m</a></span>'
+    )
+    problems = page_problems(page)
+    assert len(problems) == 3, problems
+    assert {"gone.png", "b.png", "missing.html"} == {
+        name for name in ("gone.png", "b.png", "missing.html") if any(name in p for p in problems)
+    }
+
+
 def test_lessons_without_notebook_tools_run_as_scripts(tmp_path, monkeypatch, capsys):
     # what a user without the notebook extra gets: figures, tables.md and a course book that
     # links what exists, and one line saying what to install for the rest
