@@ -215,23 +215,27 @@ def test_the_server_exits_when_the_command_that_started_it_is_gone(tmp_path):
         pytest.fail("the server outlived the command that started it by 15 s")
 
 
-@pytest.mark.skipif(not compile_cache.is_warm(), reason="the steps are not compiled yet")
-def test_with_the_engine_a_kernel_starts_with_the_steps_loaded(tmp_path):
-    # `sandbox lessons` on a compiled machine: the server loads the one-call steps from the
-    # cache once, and every kernel has them (no loading of its own); without, none has
-    address = tmp_path / "engine"
+def loaded_steps(specs: Path, cwd: Path) -> list[int]:
+    """How many compiled versions of the one-call steps (iterative, soft) a new kernel has."""
     code = (
         "from sandbox import step\n"
         "print(len(step.fast_step.signatures), len(step.soft_step.signatures))"
     )
+    manager, client = start(specs, cwd)
+    try:
+        return [int(n) for n in run(client, code)["out"].split()]
+    finally:
+        stop(manager, client)
+
+
+@pytest.mark.skipif(not compile_cache.is_warm(), reason="the steps are not compiled yet")
+def test_with_the_engine_a_kernel_starts_with_the_steps_loaded(tmp_path):
+    # `sandbox lessons` on a compiled machine: the server loads the lessons' families from the
+    # cache once, and every kernel has them (no loading of its own); without, none has
+    address = tmp_path / "engine"
     for engine in (True, False):
         with prefork.Server(address, dict(os.environ), engine=engine):
-            specs = prefork.write_spec(tmp_path / f"kernels-{engine}", address)
-            manager, client = start(specs, tmp_path)
-            try:
-                loaded = [int(n) for n in run(client, code)["out"].split()]
-            finally:
-                stop(manager, client)
+            loaded = loaded_steps(prefork.write_spec(tmp_path / f"k-{engine}", address), tmp_path)
         assert all(loaded) if engine else not any(loaded), (engine, loaded)
 
 
@@ -240,20 +244,10 @@ def test_a_server_loads_the_engine_when_asked(tmp_path):
     # a first `sandbox lessons`: the server starts while the warmup compiles and loads the
     # engine once asked (request_engine); kernels forked after that start with it
     address = tmp_path / "later"
-    code = (
-        "from sandbox import step\n"
-        "print(len(step.fast_step.signatures), len(step.soft_step.signatures))"
-    )
-    loaded = []
     with prefork.Server(address, dict(os.environ)):
         specs = prefork.write_spec(tmp_path / "kernels", address)
-        for ask in (False, True):
-            if ask:
-                assert prefork.request_engine(address)
-            manager, client = start(specs, tmp_path)
-            try:
-                loaded.append([int(n) for n in run(client, code)["out"].split()])
-            finally:
-                stop(manager, client)
-    assert not any(loaded[0]) and all(loaded[1]), loaded
+        before = loaded_steps(specs, tmp_path)
+        assert prefork.request_engine(address)
+        after = loaded_steps(specs, tmp_path)
+    assert not any(before) and all(after), (before, after)
     assert not prefork.request_engine(tmp_path / "no-server")  # nothing listens: False
