@@ -239,6 +239,9 @@ def bench_lessons(cold: bool = False) -> list[dict]:
     with tempfile.TemporaryDirectory() as cache:
         if cold:
             env["NUMBA_CACHE_DIR"] = cache
+            # no background warmup after the lessons: it would go on compiling into the cache
+            # while it is removed (and beside whatever is timed next)
+            env["SANDBOX_WARMUP"] = "off"
         start = time.perf_counter()
         proc = subprocess.run(
             [sys.executable, "-m", "sandbox", "lessons"],
