@@ -255,8 +255,10 @@ save_figure(fig, OUT / "scaled_axis_wrap.png", dpi=100)
 # $\boldsymbol{\omega}$ (fixed axis) and 63 random ones (axis not fixed), never renormalised.
 # The reference is the closed form $\mathbf{q}(t) = \mathbf{q}_{\boldsymbol{\omega}t}\mathbf{q}_0$.
 # Costs are `timeit` averages: for one orientation (Python and numpy call overhead dominate) and
-# per orientation when 4096 are stepped as one array (closer to the arithmetic). Absolute times
-# depend on the machine; the ratios are the point.
+# per orientation when 4096 are stepped as one array (closer to the arithmetic): the fastest of
+# 30 short runs, as a run that another program interrupted reads slower, and a run of a
+# millisecond or so is seldom interrupted. Absolute times depend on the machine; the ratios are
+# the point.
 
 # %%
 starts = np.vstack([0.3 * TABLE_OMEGA, rng.normal(size=(63, 3))])
@@ -269,7 +271,10 @@ v = np.array([0.3, -0.2, 0.9])
 
 
 def cost_us(fn, number):
-    return min(timeit.repeat(fn, number=number, repeat=3)) / number * 1e6
+    """Microseconds a call of ``fn``: the fastest of 30 runs of ``number`` / 10 calls each,
+    after one run not counted (the first calls of a function run slower)."""
+    calls = max(1, number // 10)
+    return min(timeit.repeat(fn, number=calls, repeat=31)[1:]) / calls * 1e6
 
 
 table = []
