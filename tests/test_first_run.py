@@ -522,57 +522,37 @@ def test_the_wait_shows_its_line_and_the_time_so_far_redrawn_every_tick():
     assert all(d == "waiting for the background warmup [00:00]" for d in drawn)
 
 
-def test_lessons_without_kernels_run_beside_the_warmup(monkeypatch, tmp_path):
-    # a first `sandbox lessons`: lesson 15 starts while the warmup compiles, every other lesson
-    # once it is done (and the kernels' server has loaded what it compiled)
+def test_a_first_run_starts_the_lessons_once_the_warmup_is_done(monkeypatch, tmp_path):
+    # a first `sandbox lessons`: the kernels' server starts (without the engine) beside the
+    # warmup, loads the engine once the warmup has compiled it, and only then do lessons start
+    from contextlib import contextmanager
+
     from sandbox.cli import lessons
     from sandbox.course import runner
     from sandbox.course.catalogue import find_lessons
 
-    chosen = find_lessons(Path(__file__).resolve().parent.parent / "lessons")
-    started, done = [], []
+    chosen = find_lessons(Path(__file__).resolve().parent.parent / "lessons")[:3]
+    events = []
 
-    class Warmup:  # the warmup's process: done once an early lesson has started (or 10 s)
+    class Warmup:  # the warmup's process
         def wait(self):
-            deadline = time.monotonic() + 10.0
-            while not started and time.monotonic() < deadline:
-                time.sleep(0.01)
-            done.append(True)
+            events.append("warmup done")
             return 0
 
-    def run_script(lesson, outputs, logs=None):
-        started.append((lesson.stem, bool(done)))
+    @contextmanager
+    def kernels(folder, outputs, engine=False):
+        events.append(f"server, engine={engine}")
+        yield folder / "kernels"
+
+    def run_notebook(lesson, outputs, specs, logs=None):
+        events.append("lesson")
         return runner.Outcome(lesson, 0.0)
 
     monkeypatch.setattr(lessons, "_compile_first", lambda chosen: Warmup())
-    monkeypatch.setattr(lessons, "_compile_rest", lambda: None)
-    monkeypatch.setattr(runner, "run_script", run_script)
-    outcomes = lessons._run_all(chosen, tmp_path, notebooks=False, jobs=2)
+    monkeypatch.setattr(lessons, "_compile_rest", lambda: events.append("rest"))
+    monkeypatch.setattr(runner, "kernels", kernels)
+    monkeypatch.setattr(runner, "run_notebook", run_notebook)
+    monkeypatch.setattr(runner, "load_engine", lambda specs: events.append("engine"))
+    outcomes = lessons._run_all(chosen, tmp_path, notebooks=True, jobs=2)
     assert [o.lesson.stem for o in outcomes] == [lesson.stem for lesson in chosen]
-    early = [stem for stem, after in started if not after]
-    assert early == list(lessons.WITHOUT_KERNELS)
-    assert sorted(stem for stem, _ in started) == sorted(lesson.stem for lesson in chosen)
-
-
-def test_the_lessons_without_kernels_call_none(tmp_path):
-    # they run beside the warmup, which must not have to wait for them to compile or load a
-    # kernel: run as a script, not one numba dispatcher is compiled or loaded from the cache
-    root = Path(__file__).resolve().parent.parent
-    from sandbox.cli.lessons import WITHOUT_KERNELS
-
-    driver = (  # every compiled function of the engine that has a version ready afterwards
-        "import runpy, sys\n"
-        "from numba.core.registry import CPUDispatcher\n"
-        "runpy.run_path(sys.argv[1], run_name='__main__')\n"
-        "names = {f'{m}.{k}' for m, module in list(sys.modules.items()) if m.startswith('sandbox')\n"
-        "         for k, v in vars(module).items() if isinstance(v, CPUDispatcher) and v.overloads}\n"
-        "print('DISPATCHED', sorted(names))\n"
-    )
-    env = {**os.environ, "SANDBOX_OUTPUTS": str(tmp_path), "MPLBACKEND": "Agg"}
-    for stem in WITHOUT_KERNELS:
-        script = root / "lessons" / f"{stem}.py"
-        done = subprocess.run(
-            [sys.executable, "-c", driver, str(script)], env=env, capture_output=True, text=True
-        )
-        assert done.returncode == 0, done.stderr[-2000:]
-        assert done.stdout.splitlines()[-1] == "DISPATCHED []", (stem, done.stdout[-500:])
+    assert events == ["server, engine=False", "warmup done", "engine"] + ["lesson"] * 3 + ["rest"]

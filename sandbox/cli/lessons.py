@@ -16,9 +16,6 @@ from sandbox.fieldspec import Field
 
 JOBS = Field("jobs", "integer", "lessons run at a time", None, "", lo=1, hi=64)
 FEW = 1  # lessons that compile what they need as they run, on a first run (no warmup first)
-# lessons that call no compiled kernel (tests/test_lessons.py checks it): on a first run they go
-# beside the warmup, on the core its second process leaves idle before the first is done
-WITHOUT_KERNELS = ("15_rotation_3d",)
 
 
 def add_parser(sub) -> None:
@@ -118,7 +115,7 @@ def _compile_first(chosen: int):
     terminal its progress bar, elsewhere a line per family of kernels ready), rather than in
     each lesson's process, the same kernels at the same time; the rest of the engine is left
     for a background warmup after the lessons (:func:`_compile_rest`). Returns the warmup's
-    process (the lessons wait for it, but for :data:`WITHOUT_KERNELS`), or None.
+    process (the lessons wait for it), or None.
     A single lesson compiles what it needs itself as it runs, while the warmup compiles the
     rest in the background at a low priority (as a small scene's first run does,
     :func:`sandbox.cli.first_run.start_background_warmup`): on two cores it takes the other
@@ -192,10 +189,9 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     ``jobs`` or the order. The kernels a lesson compiles are counted in a log
     (:func:`sandbox.course.runner.compile_log`) rather than announced in its page.
 
-    While the warmup compiles, the lessons' kernel server imports its libraries, and the
-    lessons that call no compiled kernel (:data:`WITHOUT_KERNELS`) run: the warmup's two
-    processes do not finish together, and the lessons' first kernels would otherwise wait for
-    the server. The server loads the compiled engine once the warmup is done.
+    While the warmup compiles, the lessons' kernel server imports its libraries (the lessons'
+    first kernels would otherwise wait for it), and loads the compiled engine once the warmup
+    is done.
     """
     from contextlib import ExitStack
 
@@ -232,19 +228,11 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
             return f"{count} kernels compiled" if count else ""
 
         longest_first = sorted(chosen, key=lambda lesson: -lesson.path.stat().st_size)
-        with ThreadPoolExecutor(jobs) as pool:
-            running = {}
-            if warmup is not None:  # lessons that need none of it go beside the warmup
-                for lesson in longest_first:
-                    if lesson.stem in WITHOUT_KERNELS:
-                        running[lesson.stem] = pool.submit(one, lesson)
-                if warmup.wait() == 0 and specs is not None:
-                    load_engine(specs)
-            for lesson in longest_first:
-                if lesson.stem not in running:
-                    running[lesson.stem] = pool.submit(one, lesson)
-            with LessonBar(len(chosen), compiled) as bar:
-                outcomes = [bar.report(running[lesson.stem].result()) for lesson in chosen]
+        if warmup is not None and warmup.wait() == 0 and specs is not None:
+            load_engine(specs)  # what the warmup compiled, once, for every kernel
+        with LessonBar(len(chosen), compiled) as bar, ThreadPoolExecutor(jobs) as pool:
+            running = {lesson.stem: pool.submit(one, lesson) for lesson in longest_first}
+            outcomes = [bar.report(running[lesson.stem].result()) for lesson in chosen]
     if warmup is not None:
         _compile_rest()
     return outcomes
