@@ -100,6 +100,23 @@ def test_asks_again_until_iopub_is_connected():
     assert client.asked == 2 and client.info is REPLY
 
 
+def test_another_jupyter_client_gets_its_own_wait(monkeypatch):
+    # without the piece this wait uses (a jupyter_client whose internals moved), the client
+    # waits as jupyter_client itself does
+    from jupyter_client.blocking import BlockingKernelClient
+    from jupyter_client.client import KernelClient
+
+    waited = []
+    monkeypatch.delattr(KernelClient, "_handle_kernel_info_reply", raising=False)
+    monkeypatch.delattr(Fake, "_handle_kernel_info_reply")
+    monkeypatch.setattr(
+        BlockingKernelClient, "wait_for_ready", lambda self, t=None: waited.append(t)
+    )
+    client = Fake([REPLY], [STATUS])
+    client.wait_for_ready(timeout=5)
+    assert waited == [5] and client.asked == 0
+
+
 def test_a_kernel_that_stops_answering_is_reported():
     with pytest.raises(RuntimeError, match="died"):
         Fake([], [], alive=False).wait_for_ready(timeout=5)
