@@ -272,10 +272,6 @@ SECOND_SHARE_FIRST = (
     "pairwise solver, staged",
 )
 
-# with only the lessons' families, the second share finished 5 s before the first (which goes on
-# to the soft step); it ends with these, by then in the cache but for their own glue
-LESSONS_SECOND_LAST = ("iterative solver, staged",)
-
 
 def part(index: int, parts: int, lessons: bool = False) -> list:
     """Share ``index`` of ``parts`` of :func:`worlds` (``lessons``: of the lessons' families):
@@ -286,13 +282,10 @@ def part(index: int, parts: int, lessons: bool = False) -> list:
     if parts != 2:
         return [family for q, family in enumerate(families) if q % parts == index]
     by_label = {family[0]: family for family in families}
-    moved = LESSONS_SECOND_LAST if lessons else ()
     if index == 0:
-        return [
-            by_label[label] for label in FIRST_SHARE if label in by_label and label not in moved
-        ]
+        return [by_label[label] for label in FIRST_SHARE if label in by_label]
     rest = [label for label in by_label if label not in FIRST_SHARE + SECOND_SHARE_FIRST]
-    second = SECOND_SHARE_FIRST + tuple(label for label in rest if label not in moved) + moved
+    second = SECOND_SHARE_FIRST + tuple(rest)
     return [by_label[label] for label in second if label in by_label]
 
 
