@@ -202,12 +202,10 @@ def load_engine() -> None:
 
     import matplotlib.pyplot as plt
 
-    from sandbox.warmup import helpers, step, worlds
+    from sandbox.warmup import helpers, warm_families, worlds
 
     try:
-        for _, world, staged in worlds(lessons=True):
-            step(world, staged=staged)
-            world.find_contacts()
+        warm_families(worlds(lessons=True), report=lambda line: None)
         helpers()
     except Exception:  # a kernel loads it itself (or reports why it cannot)
         pass
