@@ -141,12 +141,18 @@ def kernels(folder: Path, outputs: Path, engine: bool = False) -> Iterator[Path]
         if not prefork.available():
             yield kernel_specs(folder)
             return
-        address = folder / "prefork"
+        address = server_address(folder)
         with prefork.Server(address, lesson_env(outputs), engine):
             yield prefork.write_spec(folder / "kernels", address)
     finally:
         while _stopping:  # every kernel the lessons ran in has exited
             _stopping.pop().join()
+
+
+def server_address(folder: Path) -> Path:
+    """Where the forking server of :func:`kernels` started in ``folder`` listens (its kernel
+    specs are in ``folder / "kernels"``)."""
+    return folder / "prefork"
 
 
 def load_engine(specs: Path) -> None:
@@ -155,7 +161,7 @@ def load_engine(specs: Path) -> None:
     (:func:`sandbox.course.prefork.request_engine`; nothing where kernels are not forked)."""
     from sandbox.course import prefork
 
-    address = specs.parent / "prefork"
+    address = server_address(specs.parent)
     if prefork.available() and address.exists():
         prefork.request_engine(address)
 
