@@ -78,7 +78,8 @@ def test_ready_once_the_kernel_answers_and_iopub_is_quiet_for_a_moment():
     assert client.info is REPLY and client.asked == 1
     assert client.iopub_channel.messages == []  # the start-up messages were read
     # the last wait on IOPub is the short settle, not jupyter_client's 0.2 s
-    assert client.iopub_channel.waited == [kernel_client.SETTLE] < [0.2]
+    assert client.iopub_channel.waited == [kernel_client.SETTLE]
+    assert kernel_client.SETTLE < 0.2
     assert time.monotonic() - start < 1.0
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import subprocess
 import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
@@ -109,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _compile_first(chosen: int):
+def _compile_first(chosen: int) -> subprocess.Popen | None:
     """On a machine where the engine was never compiled: for more than :data:`FEW` lesson,
     start compiling what the lessons need once before them (``sandbox warmup --lessons``: on a
     terminal its progress bar, elsewhere a line per family of kernels ready), rather than in
@@ -132,9 +133,6 @@ def _compile_first(chosen: int):
     If a background warmup (an earlier run's) is compiling, it is waited for
     (:func:`sandbox.cli.first_run.wait_for_warmup`) instead of being run again beside it: all
     lessons right after ``sandbox lessons 01`` took 191.8 s, and 125.3 s waiting."""
-    import os
-    import subprocess
-
     from sandbox.compile_cache import CACHE_FOLDER, is_warm
 
     if os.environ.get("SANDBOX_JIT") == "0" or CACHE_FOLDER is None or is_warm():

@@ -74,7 +74,9 @@ def page_exporter():
     export's filters."""
     from sandbox.course.exporter import LessonPageExporter
 
-    made = _exporters.__dict__.setdefault("made", {})
+    if not hasattr(_exporters, "made"):
+        _exporters.made = {}  # exporter class -> its exporter, in this thread
+    made = _exporters.made
     exporter = made.get(LessonPageExporter)
     if exporter is None:
         from jinja2 import DictLoader
