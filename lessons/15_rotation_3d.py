@@ -301,7 +301,7 @@ for cls in r3.REPRESENTATIONS:
 headers = ["structure", "floats", "us/step", "ns/step (x4096)", "us to matrix", "us rotate v"]
 headers += ["us renormalise", "drift, 5000 steps", "err fixed axis (rad)", "err axis moving (rad)"]
 comparison = print_table(headers, table, digits=2)
-(OUT / "comparison_table.txt").write_text(comparison + "\n")
+_ = (OUT / "comparison_table.txt").write_text(comparison + "\n")  # the count it returns: not shown
 
 # %% [markdown]
 # Reading the table against the slides: the scaled axis is the most compact (3 floats) and its
