@@ -556,3 +556,29 @@ def test_a_first_run_starts_the_lessons_once_the_warmup_is_done(monkeypatch, tmp
     outcomes = lessons._run_all(chosen, tmp_path, notebooks=True, jobs=2)
     assert [o.lesson.stem for o in outcomes] == [lesson.stem for lesson in chosen]
     assert events == ["server, engine=False", "warmup done", "engine"] + ["lesson"] * 3 + ["rest"]
+
+
+def test_the_server_loads_the_engine_only_for_more_lessons_than_run_at_once(monkeypatch, tmp_path):
+    # loading it takes the server about a second before its first kernel: it pays when many
+    # lessons share it, not for one lesson (`sandbox lessons 17`: 2.9 s without, 3.3 s with)
+    from contextlib import contextmanager
+
+    from sandbox.cli import lessons
+    from sandbox.course import runner
+    from sandbox.course.catalogue import find_lessons
+
+    every = find_lessons(Path(__file__).resolve().parent.parent / "lessons")
+    asked = []
+
+    @contextmanager
+    def kernels(folder, outputs, engine=False):
+        asked.append(engine)
+        yield folder / "kernels"
+
+    monkeypatch.setattr(lessons, "_compile_first", lambda chosen: None)
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: True)
+    monkeypatch.setattr(runner, "kernels", kernels)
+    monkeypatch.setattr(runner, "run_notebook", lambda lesson, *a: runner.Outcome(lesson, 0.0))
+    for chosen in (every[:1], every[:2], every[:3]):
+        lessons._run_all(chosen, tmp_path, notebooks=True, jobs=2)
+    assert asked == [False, False, True]
