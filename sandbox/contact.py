@@ -25,10 +25,12 @@ __all__ = ["FIELDS", "Contact", "ContactBuffers", "Manifolds", "contacts_from_ma
 class ContactBuffers:
     """One world's contact arrays, kept from step to step.
 
-    - ``sets`` (2, capacity) CONTACT records: one set holds the last step's contacts (what the
-      next step warm starts from), the next step writes the other. Which set is which, and how
-      many records each holds, is in the world's step context (``contact_set``,
-      ``contact_count``), so the compiled step can flip them.
+    - ``sets`` (3, capacity) CONTACT records: of the first two, one holds the last step's
+      contacts (what the next step warm starts from), the next step writes the other. Which set
+      is which, and how many records each holds, is in the world's step context
+      (``contact_set``, ``contact_count``), so the compiled step can flip them. The third
+      (``sets[STORE]``) keeps the contacts of sleeping islands for when they wake
+      (:mod:`sandbox.sleep`).
     - ``proxies`` (m,) PROXY records: the broadphase's boxes and sweep order for the m shapes.
     - ``pairs`` (2, capacity, 2) int64: the pair list as found (``pairs[0]``) and sorted
       (``pairs[1]``).
@@ -42,16 +44,16 @@ class ContactBuffers:
         self.proxies["order"] = np.arange(shapes)
         self._views: list = [None, None]
         self.capacity = 0
-        self.sets = np.zeros((2, 0), dtype=CONTACT)
+        self.sets = np.zeros((3, 0), dtype=CONTACT)
         self.pairs = np.zeros((2, 0, 2), dtype=np.int64)
         self.reserve(4 * shapes + 64 if capacity is None else int(capacity))
 
     def reserve(self, rows: int) -> None:
-        """Room for at least ``rows`` pairs and manifolds (both sets are kept)."""
+        """Room for at least ``rows`` pairs and manifolds (all three sets are kept)."""
         if rows <= self.capacity:
             return
         capacity = max(rows + rows // 4, 2 * self.capacity)
-        sets = np.zeros((2, capacity), dtype=CONTACT)
+        sets = np.zeros((3, capacity), dtype=CONTACT)
         sets[:, : self.capacity] = self.sets
         for s in range(2):
             self.release(s)

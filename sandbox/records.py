@@ -122,6 +122,9 @@ CONTACT_POINT = np.dtype(
     align=True,
 )
 
+STORE = 2  # the contact sets: 0 and 1 take turns (the last step's, this step's), 2 keeps the
+# contacts of sleeping islands for when they wake (sandbox.sleep)
+
 CONTACT = np.dtype(
     [
         ("a", I8),  # body a (the normal points from a to b)
@@ -314,7 +317,7 @@ CONTEXT = np.dtype(
         ("pairs_kept", np.bool_),  # sweep and prune: pairs[1] holds the pairs of the boxes in
         # PROXY["aabb"], found with FAT_MARGIN to spare (sandbox.step.find_pairs)
         ("contact_set", I8),  # which of the two contact sets holds the last step's contacts
-        ("contact_count", I8, 2),  # how many contacts each set holds
+        ("contact_count", I8, 3),  # how many contacts each set holds (the third: STORE)
         ("need", I8),  # > 0: the pair buffer needs this many rows (nothing was changed)
         ("diverged", I8),  # the first body whose state stopped being finite, else -1
         ("energy_limit", F8),  # J: a closed system's KE + PE_gravity above this diverged

@@ -12,6 +12,12 @@ An island wakes when an awake body touches one of its bodies (checked right afte
 narrowphase, before anything is solved), and when the program pushes, moves or changes one of
 its bodies (``World.wake``). When nothing is awake and nothing kinematic moves, the world
 skips the step altogether.
+
+A sleeping island keeps its contacts, as in Box2D: when it falls asleep, its contacts (with
+their impulses) go to a third contact set, the *store*, and when it wakes its contacts are warm
+started from there (:mod:`sandbox.sleeping_contacts`). Without that,
+a pile that woke began from zero impulses, sagged and slid for a few steps, and ended 1 cm
+from where the same pile kept awake did (0.5 mm with the store).
 """
 
 from __future__ import annotations

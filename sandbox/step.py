@@ -61,7 +61,9 @@ from sandbox.joints.solve import (
 from sandbox.narrowphase import collide_into
 from sandbox.penetration import fix_positions
 from sandbox.plain_records import staged_view
+from sandbox.records import STORE
 from sandbox.sleep import fall_asleep, moving_kinematic, wake_touched
+from sandbox.sleeping_contacts import keep_sleeping_contacts, wake_contacts
 from sandbox.solvers import SOLVERS, iterative
 from sandbox.solvers.common import (
     count_points,
@@ -180,14 +182,24 @@ def boxes_hold(shapes, vertices, bodies, reach, proxies) -> bool:
 
 
 @njit
-def prepare(contacts, k: int, previous, shapes, bodies, context, block: bool = True) -> None:
+def prepare(contacts, k: int, kept, shapes, bodies, context, block: bool = True) -> None:
     """Stage 3: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
-    unless ``block`` is False: the soft step has none), then the warm-start impulses."""
+    unless ``block`` is False: the soft step has none), then the warm-start impulses: from
+    ``kept`` = (the last step's contacts, the store of sleeping islands' contacts), for islands
+    that just woke from the store (:func:`sandbox.sleeping_contacts.wake_contacts`)."""
     ctx = context[0]
+    previous, store = kept
     prepare_contacts(contacts, k, shapes, bodies, 0.0, context, block)
     found = 0
     if ctx["warm_start"]:
-        found = match_previous(contacts, k, previous, ctx["contact_count"][ctx["contact_set"]])
+        last = (previous, ctx["contact_count"][ctx["contact_set"]])
+        if ctx["contact_count"][STORE] > 0:
+            found, ctx["contact_count"][STORE] = wake_contacts(
+                contacts, k, bodies, store, ctx["contact_count"][STORE], last
+            )
+        found += match_previous(contacts, k, *last)
+    else:
+        ctx["contact_count"][STORE] = 0  # nothing warm starts: the kept contacts would go stale
     ctx["warm_started_points"] = found
 
 
@@ -248,22 +260,27 @@ def find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, co
 
 
 @njit
-def settle(contacts, k: int, joints, bodies, context) -> None:
+def settle(contacts, k: int, joints, bodies, store, context) -> None:
     """With sleep on, the end of the step: islands at rest long enough fall asleep
-    (:func:`sandbox.sleep.fall_asleep`); ``ctx["awake"]`` counts the bodies still awake."""
+    (:func:`sandbox.sleep.fall_asleep`) and their contacts go to ``store``
+    (:func:`sandbox.sleeping_contacts.keep_sleeping_contacts`); ``ctx["awake"]`` counts the bodies still
+    awake."""
     ctx = context[0]
     if ctx["sleep"]:
         ctx["awake"] = fall_asleep(contacts, k, joints, bodies, ctx["dt"])
+        if ctx["warm_start"]:
+            count = ctx["contact_count"]
+            count[STORE] = keep_sleeping_contacts(contacts, k, bodies, store, count[STORE])
 
 
 @njit
-def finish_step(contacts, k: int, joints, bodies, context) -> int:
+def finish_step(contacts, k: int, joints, bodies, store, context) -> int:
     """The end of every step: count the contact points, clear the forces, let islands at rest
     fall asleep (:func:`settle`), keep the impulses (:func:`store_impulses`, whose status it
     returns)."""
     context[0]["contact_points"] = count_points(contacts, k)
     clear_forces(bodies)
-    settle(contacts, k, joints, bodies, context)
+    settle(contacts, k, joints, bodies, store, context)
     return store_impulses(k, bodies, context)
 
 
@@ -284,7 +301,7 @@ def fast_step(
     k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
     if k < 0:
         return k
-    prepare(contacts, k, previous, shapes, bodies, context)
+    prepare(contacts, k, (previous, sets[STORE]), shapes, bodies, context)
     gather_forces(bodies)
     integrate_velocities(model, context, ctx["dt"], work)
     prepare_joints(joints, bodies, context)
@@ -294,7 +311,7 @@ def fast_step(
     plan_motion(bodies, ctx["dt"])
     move_bodies(bodies, rot, context)
     fix_positions(contacts, k, joints, bodies, rot, context)
-    return finish_step(contacts, k, joints, bodies, context)
+    return finish_step(contacts, k, joints, bodies, sets[STORE], context)
 
 
 @njit
@@ -327,13 +344,13 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work, plan) 
 
 
 @njit
-def begin_soft(contacts, k: int, previous, model, context) -> None:
+def begin_soft(contacts, k: int, kept, model, context) -> None:
     """The soft step's prepare stages: contacts (with their softness and base separations)
     and joints, once for the whole step; the bodies' moves are counted from here."""
     bodies, shapes, joints = model[0], model[1], model[3]
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
-    prepare(contacts, k, previous, shapes, bodies, context, False)
+    prepare(contacts, k, kept, shapes, bodies, context, False)
     ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(contacts, k, bodies, context)
@@ -355,12 +372,12 @@ def soft_step(
     k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
     if k < 0:
         return k
-    begin_soft(contacts, k, previous, model, context)
+    begin_soft(contacts, k, (previous, sets[STORE]), model, context)
     plan = soft_joint_plan(joints, bodies, context)
     soft_substeps(contacts, k, model, rot, context, False, work, plan)
     fix_positions(contacts, k, joints, bodies, rot, context, plan[1])
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
-    return finish_step(contacts, k, joints, bodies, context)
+    return finish_step(contacts, k, joints, bodies, sets[STORE], context)
 
 
 @njit
@@ -462,7 +479,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         clock.lap("collide")
     if world.settings.solver == "soft":
         return staged_soft(world, (contacts, k, previous), a, clock)
-    prepare(contacts, k, previous, a.shapes, a.bodies, a.context)
+    prepare(contacts, k, (previous, sets[STORE]), a.shapes, a.bodies, a.context)
     clock.lap("prepare_contacts")
     gather_forces(a.bodies)
     integrate_velocities(model, a.context, ctx["dt"], a.work)
@@ -482,7 +499,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     clock.lap("integrate_positions")
     position_stage(world, a, (contacts, k), False)
     clock.lap("fix_positions")
-    status = finish_step(contacts, k, a.joints, a.bodies, a.context)
+    status = finish_step(contacts, k, a.joints, a.bodies, a.buffers.sets[STORE], a.context)
     clock.lap("store_impulses")
     if timer is not None:
         timer.steps += 1
@@ -494,7 +511,7 @@ def staged_soft(world, found, a, clock) -> int:
     contacts, k, previous = found
     ctx = a.context[0]
     model = (a.bodies, a.shapes, a.vertices, a.joints, a.generators)
-    begin_soft(contacts, k, previous, model, a.context)
+    begin_soft(contacts, k, (previous, a.buffers.sets[STORE]), model, a.context)
     clock.lap("prepare_contacts")
     plan = soft_joint_plan(a.joints, a.bodies, a.context)
     soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd, a.work, plan)
@@ -502,7 +519,7 @@ def staged_soft(world, found, a, clock) -> int:
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
     clock.lap("restitution")
-    status = finish_step(contacts, k, a.joints, a.bodies, a.context)
+    status = finish_step(contacts, k, a.joints, a.bodies, a.buffers.sets[STORE], a.context)
     clock.lap("store_impulses")
     if isinstance(clock, StageTimer):
         clock.steps += 1

@@ -171,7 +171,7 @@ class World(Building, Measures):
             ctx = self.context[0]
             ctx["sweep_direction"] = -1
             ctx["pairs_kept"] = False
-            ctx["contact_count"][0] = ctx["contact_count"][1] = 0
+            ctx["contact_count"][:] = 0  # the last step's sets and the sleeping islands' store
         return b
 
     def _constants_changed(self, i: int | None = None) -> None:

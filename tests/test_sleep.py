@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from sandbox import Body, Box, Circle, PinJoint, World, load_scene
+from sandbox.records import STORE
 
 SLEEPERS = 10  # boxes in the pyramid of base 4
 
@@ -219,3 +220,34 @@ def test_a_new_shape_wakes_its_own_island_only():
     world.body("far").add_shape(Circle(0.2, offset=(0.0, 0.7)))
     assert world.sleeping.sum() == SLEEPERS
     assert not world.sleeping[world.body("far").index]
+
+
+def test_a_woken_island_warm_starts_from_its_kept_contacts():
+    """A sleeping island's contacts are kept (sandbox.sleeping_contacts): the step after it
+    wakes warm starts every contact point from them, as from the last step's contacts, and
+    the store is emptied of what woke."""
+    far = {**dropper(60.0), "position": [15.0, 60.0]}  # still falling at 3 s: steps go on
+    world = pyramid(extra=[far])
+    run(world, 3.0)
+    assert world.sleeping[boxes(world)].all()
+    ctx = world.context[0]
+    assert ctx["contacts"] == 0  # the last step's set holds none of the pile's contacts
+    assert ctx["contact_count"][STORE] > 0
+    world.wake("r0b0")
+    world.step()
+    assert not world.sleeping.any()
+    assert ctx["warm_started_points"] == ctx["contact_points"] > 0
+    assert ctx["contact_count"][STORE] == 0  # awake again: their contacts are current ones
+
+
+def test_a_dropped_box_leaves_the_woken_pile_where_it_leaves_an_awake_one():
+    """With the woken island warm started as the awake one is, the two piles end within 1 mm
+    of each other after the 20 m/s impact at every drop height tried (measured 0.01 to
+    0.45 mm; 0.6 to 6.7 mm when a woken island started from zero impulses and the ids of
+    points on swapping reference faces changed, 1.7 to 15 mm once the ids held but the woken
+    island still started from zero)."""
+    for height in (22.0, 24.0, 26.0):
+        asleep, awake = (pyramid(sleep=s, extra=[dropper(height)]) for s in (True, False))
+        run(asleep, 8.0)
+        run(awake, 8.0)
+        assert np.abs(asleep.com[boxes(asleep)] - awake.com[boxes(awake)]).max() < 1e-3
