@@ -430,16 +430,17 @@ print_table(["case", "d", "p hand", "p engine", "n hand", "n engine", "pc hand",
 #
 # Each contact point also carries a **feature id** (`c.features`), an integer naming the
 # pair of features that produced it. For polygons it is
-# `code * 2**32 + vertex_of_a * 2**16 + vertex_of_b`, where `code` says which polygon holds
-# the reference face (0: a, 1: b) and the vertices are the reference-face vertex whose side
-# plane bounds the point and the incident vertex it came from. Circle contacts have id 0 (a
-# circle has one feature).
+# `code * 2**32 + vertex_of_a * 2**16 + vertex_of_b` (`code` 0 for two faces, 2 for two
+# corners), where the vertices are the reference-face vertex whose side plane bounds the point
+# and the incident vertex it came from, a's first whichever polygon holds the reference face:
+# two equal boxes can swap which face is the reference from one step to the next, and the same
+# point must keep its name. Circle contacts have id 0 (a circle has one feature).
 #
 # The id does not say *where* the point is: it says *which* features touch, so it stays the
 # same from one step to the next while the same corner rests on the same side, even though
 # the point moves a little. The iterative solver uses this to **warm start**: it finds each
 # point of this step among the last step's points by (shapes, feature id) and starts from the
-# impulse that point needed last time (`sandbox/contact_cache.py`). Without stable ids a
+# impulse that point needed last time (`match_previous` in `sandbox/solvers/common.py`). Without stable ids a
 # resting stack would have to rebuild its impulses from zero every step and would jitter.
 #
 # Below, the upper box of the "line of contact" case slides and turns a little, then slides
