@@ -21,6 +21,7 @@ SOFT_DEFAULTS = (
     ("joint_damping_ratio", 5.0),
     ("max_push_speed", 3.0),
     ("hold_ratio", 10.0),
+    ("sag_recovery_time", 1.0),
     ("sleep", False),
 )
 

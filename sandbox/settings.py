@@ -201,6 +201,14 @@ class Settings:
         Range(0.0, 1e9),
         ge=0.0,
     )
+    sag_recovery_time: float = _setting(
+        1.0,
+        "number",
+        "time in which a soft contact takes back the sag its load presses into it, so a tall pile "
+        "stands at its full height (0: the sag stays, as in Box2D's soft step) (solver: soft)",
+        Range(0.0, 1e3, "s"),
+        ge=0.0,
+    )
     max_push_speed: float = _setting(
         3.0, "number", "fastest speed at which overlapping bodies are pushed apart", _SPEED, gt=0.0
     )

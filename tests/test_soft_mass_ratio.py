@@ -65,21 +65,28 @@ def test_a_light_box_stays_under_a_400_kg_box(light_size, substeps):
     # with a body that cannot move, C = M g / (2 m_p omega^2), two points of effective mass
     # m_p = (1/M + r^2 / I)^-1 (r: half the light box, I = M / 6), omega = 2 pi (2 f), f the
     # contact hertz capped at an eighth of the substep rate (the soft step lesson, section 2):
-    # 0.047 mm to 0.086 mm here, within 1e-6 relative (measured 2e-9)
+    # 0.047 mm to 0.086 mm here, within 1e-6 relative (measured 2e-9), with the sag kept
+    # (sag_recovery_time 0); at the defaults the contact takes that sag back as e^(-t / 1 s):
+    # after 10 s under a thousandth of it is left (measured 2e-5 to 4e-5)
+    def rest(w: World) -> float:
+        light, heavy = w.bodies[1], w.bodies[2]
+        return light.position[1] + light_size / 2 - (heavy.position[1] - 0.5)
+
+    kept = heavy_on_light(light_size=light_size, substeps=substeps, sag_recovery_time=0.0)
     w = heavy_on_light(light_size=light_size, substeps=substeps)
-    sink_light, sink_heavy, offset = watch(w)
-    assert sink_light < 0.02
-    assert sink_heavy < 0.02
-    assert offset < 0.01
-    light, heavy = w.bodies[1], w.bodies[2]
+    for world in (kept, w):
+        sink_light, sink_heavy, offset = watch(world)
+        assert sink_light < 0.02
+        assert sink_heavy < 0.02
+        assert offset < 0.01
     big, r = 400.0, light_size / 2
     m_p = 1 / (1 / big + r * r / (big / 6))
     hertz = STATIC_STIFFNESS * min(
         w.settings.contact_hertz, MAX_CONTACT_HERTZ_PER_RATE * substeps / w.dt
     )
     sag = big * G / (2 * m_p * (2 * math.pi * hertz) ** 2)
-    rest = light.position[1] + r - (heavy.position[1] - 0.5)
-    assert rest == pytest.approx(sag, rel=1e-6)
+    assert rest(kept) == pytest.approx(sag, rel=1e-6)
+    assert abs(rest(w)) < 1e-3 * sag
 
 
 def test_without_the_hold_the_light_box_is_squeezed_out():

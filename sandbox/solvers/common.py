@@ -183,6 +183,7 @@ def prepare_contacts(
             p = points[j]
             p["normal_impulse"] = p["tangent_impulse"] = 0.0
             p["max_normal_impulse"] = p["bounce_impulse"] = p["bounce_tangent"] = 0.0
+            p["held_sag"] = 0.0
             if j < count:
                 prepare_point(c, p, shapes, bodies, inv_dt, beta, slop)
         if block:
@@ -237,6 +238,7 @@ def match_previous(contacts, k: int, previous, k_old: int) -> int:
                 if o["feature"] == p["feature"]:
                     p["normal_impulse"] = o["normal_impulse"]
                     p["tangent_impulse"] = o["tangent_impulse"]
+                    p["held_sag"] = o["held_sag"]
                     found += 1
                     break
     return found

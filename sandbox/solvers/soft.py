@@ -28,6 +28,16 @@ in Box2D (bodies are not pushed through the ground). Overlap is pushed out at mo
 at all and is left to the position stage, which takes it out at that bounded speed (the
 pushes of a pile's many overlapping pairs would otherwise add up to tens of m/s).
 
+Sag recovery (this engine's, past Box2D): at rest a soft contact sinks until its spring carries
+its load, by the static error g / omega^2 per load it carries (:func:`load_sag`), and a pile's
+rows add theirs up (a pyramid of 40: 124 mm at the defaults). Each point keeps a *held sag*
+(:func:`hold_sag`), carried from step to step like its impulses, and the bias pulls towards
+s = -held_sag instead of 0: every biased pass adds h / T of the point's overlap to it
+(T = ``settings.sag_recovery_time``), up to the sag its load explains, so after a few T the
+spring rests where the load is carried at s = 0 (the same pyramid: 3 to 8 mm after 5 s). It is
+integral action on the spring, the I of a PI controller; the spring and damper still take
+every change of load. ``sag_recovery_time`` 0 turns it off.
+
 Mass ratios: a soft contact is a spring of stiffness m_eff omega^2, and between a light body and
 a heavy one m_eff is about the light body's, so the heavy body's weight sinks it by
 (m_heavy / m_light) g / omega^2 (11 cm at 400:1 and 30 Hz), and sweeps share the load out
@@ -223,15 +233,29 @@ def excess_depth(c, p) -> float:
     return p["depth"] - load_sag(c, p)
 
 
+@njit
+def hold_sag(c, p, s: float, recovery: float) -> float:
+    """A point's held sag after one biased pass (m): what it held, plus ``recovery`` (h / T,
+    T = ``settings.sag_recovery_time``) times its overlap -s (less, where it is apart), never
+    below 0 and never more than the sag its load explains (:func:`load_sag`). Integral action
+    on the spring: the bias pulls towards -held_sag, so a point held at s < 0 gains
+    held_sag at |s| / T a second until the load's sag is all held and s = 0; without the
+    bound a point that is deep for another reason (a box tipping over an edge) would hold ever
+    more and push its pile apart."""
+    return min(max(p["held_sag"] - recovery * s, 0.0), load_sag(c, p))
+
+
 @njit(inline="always")  # compiled into solve_soft itself, as the iterative sweep's visits
 def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     """One contact: the normal impulses (soft, or rigid without bias in the relax pass), then
     friction within the cone of the current normal impulse (Box2D v3's order). ``push`` =
-    (max_push_speed (m/s), deep (m)): a point that began the step more than ``deep`` into
-    overlap beyond the sag its load explains (:func:`load_sag`) gets no push from the bias;
+    (max_push_speed (m/s), deep (m), recovery): a point that began the step more than ``deep``
+    into overlap beyond the sag its load explains (:func:`load_sag`) gets no push from the bias;
     the position stage takes it out at a bounded speed (``settings.robust_positions``), where
-    the pushes of many overlapping neighbours would add up to tens of m/s here."""
-    max_push, deep = push
+    the pushes of many overlapping neighbours would add up to tens of m/s here. ``recovery``
+    (h / sag_recovery_time, 0: off): how much of its overlap each biased pass adds to a point's
+    held sag (:func:`hold_sag`)."""
+    max_push, deep, recovery = push
     nx, ny = c["normal"][0], c["normal"][1]
     mass = masses(c)
     va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
@@ -246,8 +270,11 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
         if s > 0.0:
             bias = s * inv_h  # speculative: the gap may close within this substep
         elif use_bias and (p["depth"] <= deep or excess_depth(c, p) <= deep):
-            bias = max(c["soft_mass_scale"] * c["soft_bias_rate"] * s, -max_push)
+            # the spring pulls towards s = -held_sag below its rest, what the load presses in
+            bias = max(c["soft_mass_scale"] * c["soft_bias_rate"] * (s - p["held_sag"]), -max_push)
             mass_scale, impulse_scale = c["soft_mass_scale"], c["soft_impulse_scale"]
+        if use_bias:
+            p["held_sag"] = hold_sag(c, p, s, recovery)
         vn = normal_speed(va, vb, p, nx, ny)
         old = p["normal_impulse"]
         change = -p["normal_mass"] * (mass_scale * vn + bias) - impulse_scale * old
@@ -300,6 +327,8 @@ def solve_soft(contacts, order, bodies, context, use_bias: bool) -> None:
     measured once instead of twice."""
     ctx = context[0]
     inv_h = ctx["substeps"] / ctx["dt"]
-    push = (ctx["max_push_speed"], ctx["deep_overlap"])
+    t = ctx["sag_recovery_time"]
+    recovery = 1.0 / (inv_h * t) if t > 0.0 else 0.0  # h / T
+    push = (ctx["max_push_speed"], ctx["deep_overlap"], recovery)
     for q in range(order.shape[0]):
         solve_soft_contact(contacts[order[q]], bodies, inv_h, use_bias, push)
