@@ -327,6 +327,7 @@ CONTEXT = np.dtype(
         ("energy_limit", F8),  # J: a closed system's KE + PE_gravity above this diverged
         ("energy", F8),  # J: KE + PE_gravity when that check last ran
         ("awake", I8),  # sleep: bodies awake after the last step (dynamic, not sleeping)
+        ("fell_asleep", I8),  # sleep: bodies that fell asleep in the last step
     ],
     align=True,
 )

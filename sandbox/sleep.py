@@ -108,10 +108,11 @@ def moving_kinematic(b) -> bool:
 
 
 @njit
-def fall_asleep(contacts, k: int, joints, bodies, dt: float) -> int:
+def fall_asleep(contacts, k: int, joints, bodies, dt: float) -> tuple[int, int]:
     """After a step: count each slow body's time at rest, find the islands, and put to sleep
     every island whose bodies have all been at rest for ``TIME_TO_SLEEP``. Returns the number
-    of bodies that will move next step (awake dynamic ones and moving kinematic ones)."""
+    of bodies that will move next step (awake dynamic ones and moving kinematic ones) and the
+    number that fell asleep now."""
     n = bodies.shape[0]
     for i in range(n):
         b = bodies[i]
@@ -132,20 +133,21 @@ def fall_asleep(contacts, k: int, joints, bodies, dt: float) -> int:
         if bodies[i]["kind"] == DYNAMIC:
             island = bodies[i]["island"]
             rested[island] = min(rested[island], bodies[i]["sleep_time"])
-    awake = 0
+    awake = fell = 0
     for i in range(n):
         b = bodies[i]
         if b["kind"] != DYNAMIC:
             awake += moving_kinematic(b)
             continue
         if rested[b["island"]] >= TIME_TO_SLEEP:
+            fell += 1
             b["kind"] = SLEEPING
             b["sleep_inv_mass"], b["sleep_inv_moment"] = b["inv_mass"], b["inv_moment"]
             b["inv_mass"] = b["inv_moment"] = 0.0
             b["vel"][0] = b["vel"][1] = b["omega"] = 0.0
         else:
             awake += 1
-    return awake
+    return awake, fell
 
 
 @njit

@@ -63,7 +63,7 @@ from sandbox.penetration import fix_positions
 from sandbox.plain_records import staged_view
 from sandbox.records import STORE
 from sandbox.sleep import fall_asleep, moving_kinematic, wake_touched
-from sandbox.sleeping_contacts import keep_sleeping_contacts, wake_contacts
+from sandbox.sleeping_contacts import wake_contacts
 from sandbox.solvers import SOLVERS, iterative
 from sandbox.solvers.common import (
     count_points,
@@ -194,9 +194,7 @@ def prepare(contacts, k: int, kept, shapes, bodies, context, block: bool = True)
     if ctx["warm_start"]:
         last = (previous, ctx["contact_count"][ctx["contact_set"]])
         if ctx["contact_count"][STORE] > 0:
-            found, ctx["contact_count"][STORE] = wake_contacts(
-                contacts, k, bodies, store, ctx["contact_count"][STORE], last
-            )
+            found = wake_contacts(contacts, k, bodies, store, context, last)
         found += match_previous(contacts, k, *last)
     else:
         ctx["contact_count"][STORE] = 0  # nothing warm starts: the kept contacts would go stale
@@ -260,27 +258,24 @@ def find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, co
 
 
 @njit
-def settle(contacts, k: int, joints, bodies, store, context) -> None:
+def settle(contacts, k: int, joints, bodies, context) -> None:
     """With sleep on, the end of the step: islands at rest long enough fall asleep
-    (:func:`sandbox.sleep.fall_asleep`) and their contacts go to ``store``
-    (:func:`sandbox.sleeping_contacts.keep_sleeping_contacts`); ``ctx["awake"]`` counts the bodies still
-    awake."""
+    (:func:`sandbox.sleep.fall_asleep`); ``ctx["awake"]`` counts the bodies still awake,
+    ``ctx["fell_asleep"]`` those that fell asleep now (the world then keeps their contacts:
+    :func:`sandbox.sleeping_contacts.keep_sleeping_contacts`)."""
     ctx = context[0]
     if ctx["sleep"]:
-        ctx["awake"] = fall_asleep(contacts, k, joints, bodies, ctx["dt"])
-        if ctx["warm_start"]:
-            count = ctx["contact_count"]
-            count[STORE] = keep_sleeping_contacts(contacts, k, bodies, store, count[STORE])
+        ctx["awake"], ctx["fell_asleep"] = fall_asleep(contacts, k, joints, bodies, ctx["dt"])
 
 
 @njit
-def finish_step(contacts, k: int, joints, bodies, store, context) -> int:
+def finish_step(contacts, k: int, joints, bodies, context) -> int:
     """The end of every step: count the contact points, clear the forces, let islands at rest
     fall asleep (:func:`settle`), keep the impulses (:func:`store_impulses`, whose status it
     returns)."""
     context[0]["contact_points"] = count_points(contacts, k)
     clear_forces(bodies)
-    settle(contacts, k, joints, bodies, store, context)
+    settle(contacts, k, joints, bodies, context)
     return store_impulses(k, bodies, context)
 
 
@@ -311,7 +306,7 @@ def fast_step(
     plan_motion(bodies, ctx["dt"])
     move_bodies(bodies, rot, context)
     fix_positions(contacts, k, joints, bodies, rot, context)
-    return finish_step(contacts, k, joints, bodies, sets[STORE], context)
+    return finish_step(contacts, k, joints, bodies, context)
 
 
 @njit
@@ -377,7 +372,7 @@ def soft_step(
     soft_substeps(contacts, k, model, rot, context, False, work, plan)
     fix_positions(contacts, k, joints, bodies, rot, context, plan[1])
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
-    return finish_step(contacts, k, joints, bodies, sets[STORE], context)
+    return finish_step(contacts, k, joints, bodies, context)
 
 
 @njit
@@ -499,7 +494,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     clock.lap("integrate_positions")
     position_stage(world, a, (contacts, k), False)
     clock.lap("fix_positions")
-    status = finish_step(contacts, k, a.joints, a.bodies, a.buffers.sets[STORE], a.context)
+    status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
     if timer is not None:
         timer.steps += 1
@@ -519,7 +514,7 @@ def staged_soft(world, found, a, clock) -> int:
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])
     clock.lap("restitution")
-    status = finish_step(contacts, k, a.joints, a.bodies, a.buffers.sets[STORE], a.context)
+    status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
     if isinstance(clock, StageTimer):
         clock.steps += 1

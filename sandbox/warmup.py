@@ -151,14 +151,13 @@ def late_stages() -> None:
     the same stages side by side."""
     from sandbox.integrators import move_bodies, plan_motion
     from sandbox.penetration import fix_positions
-    from sandbox.records import STORE
     from sandbox.solvers.common import restitution
     from sandbox.step import finish_step
 
     a = prepared(box_on_floor())
     ctx = a.context[0]
     contacts, k = a.buffers.sets[1 - ctx["contact_set"]], 0
-    finish_step(contacts, k, a.joints, a.bodies, a.buffers.sets[STORE], a.context)
+    finish_step(contacts, k, a.joints, a.bodies, a.context)
     fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
     move_bodies(a.bodies, a.rot, a.context)
     plan_motion(a.bodies, ctx["dt"])

@@ -28,6 +28,7 @@ from sandbox.records import BODY, CONTEXT, GENERATOR, JOINT, SLEEPING
 from sandbox.settings import Settings
 from sandbox.shape_records import Geometry, build_geometry
 from sandbox.sleep import wake_island
+from sandbox.sleeping_contacts import keep_sleeping_contacts
 from sandbox.step import fast_step, free_step, soft_step, staged_step
 from sandbox.world_building import Building
 from sandbox.world_measures import Measures
@@ -326,6 +327,8 @@ class World(Building, Measures):
         self._found_stats = None
         if status > 0:
             raise self._divergence(status - 1)
+        if self._sleep and self.context[0]["fell_asleep"] and self.context[0]["warm_start"]:
+            keep_sleeping_contacts(self.context[0], self._buffers.sets, self.state["kind"])
 
     def _choose_path(self) -> None:
         """How :meth:`step` runs the stages (after :meth:`_prepare` or a buffer grew): one
