@@ -184,9 +184,10 @@ def boxes_hold(shapes, vertices, bodies, reach, proxies) -> bool:
 @njit
 def prepare(contacts, k: int, kept, shapes, bodies, context, block: bool = True) -> None:
     """Stage 3: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
-    unless ``block`` is False: the soft step has none), then the warm-start impulses: from
-    ``kept`` = (the last step's contacts, the store of sleeping islands' contacts), for islands
-    that just woke from the store (:func:`sandbox.sleeping_contacts.wake_contacts`)."""
+    unless ``block`` is False: the soft step has none), then the warm-start impulses, from
+    ``kept`` = (the last step's contacts, the store of sleeping islands' contacts): the
+    contacts of islands that just woke from the store
+    (:func:`sandbox.sleeping_contacts.wake_contacts`), the others from the last step's."""
     ctx = context[0]
     previous, store = kept
     prepare_contacts(contacts, k, shapes, bodies, 0.0, context, block)

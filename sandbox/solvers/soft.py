@@ -30,7 +30,7 @@ pushes of a pile's many overlapping pairs would otherwise add up to tens of m/s)
 
 Sag recovery (this engine's, past Box2D): at rest a soft contact sinks until its spring carries
 its load, by the static error g / omega^2 per load it carries (:func:`load_sag`), and a pile's
-rows add theirs up (a pyramid of 40: 124 mm at the defaults). Each point keeps a *held sag*
+rows add theirs up (a pyramid of 40: 122 mm). Each point keeps a *held sag*
 (:func:`hold_sag`), carried from step to step like its impulses, and the bias pulls towards
 s = -held_sag instead of 0: every biased pass adds h / T of the point's overlap to it
 (T = ``settings.sag_recovery_time``), up to the sag its load explains, so after a few T the
