@@ -116,9 +116,9 @@ CONTACT_POINT = np.dtype(
         ("base_separation", F8),  # soft step: -anchor_depth - (r_b - r_a) . n, r the point's
         # arms at detection: what the bodies' moves are added to for the separation now
         ("separation", F8),  # soft step: the separation at the bodies' latest poses (m)
-        ("held_sag", F8),  # soft step: how far below s = 0 the contact's spring rests (m), the
-        # sag its load presses in, taken back over steps (sandbox.solvers.soft.hold_sag);
-        # carried from step to step with the impulses
+        ("held_sag", F8),  # soft step: how far below s = 0 the contact's springs rest (m), the
+        # sag its load presses in, taken back over steps (sandbox.solvers.soft.hold_sag; the
+        # same at a contact's points); carried from step to step with the impulses
         ("bounce_impulse", F8),  # what the passes after the sweeps added (N s), not warm-started
         ("bounce_tangent", F8),  # and their friction (N s, the shock pass's), not warm-started
     ],
