@@ -1044,10 +1044,11 @@ print_table(["pyramid of 40, soft", "share of the weight the ground carries"],
 # (1 s):
 #
 # $$d \leftarrow \min\!\left(\max\!\left(d - \frac{h}{T}\,\bar s,\; 0\right),\;
-# \overline{\left(\frac{\lambda}{m\,h\,\omega^2}\right)}\right),$$
+# \frac{1}{n}\sum_j \frac{\lambda_j}{m_j\,h\,\omega^2}\right),\qquad
+# \bar s = \frac{1}{n}\sum_j s_j,$$
 #
-# the integral of the overlap (the I of a PI controller, where the spring and damper are the P
-# and the D). At rest the spring sits where $s - d$ is the static error, so $s$ = $d$ less the
+# over the contact's $n$ points (one or two): the integral of the overlap (the I of a PI
+# controller, where the spring and damper are the P and the D). At rest the spring sits where $s - d$ is the static error, so $s$ = $d$ less the
 # static error, and $\dot d = -\bar s/T$ closes the gap as $e^{-t/T}$: after a few $T$ the whole
 # sag is held and the contact rests at $\bar s = 0$. The bound on the right is the mean static
 # error the points' own loads explain (`load_sag`, section 2's $F/(m\omega^2)$ with
