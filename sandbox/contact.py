@@ -30,7 +30,7 @@ class ContactBuffers:
       is which, and how many records each holds, is in the world's step context
       (``contact_set``, ``contact_count``), so the compiled step can flip them. The third
       (``sets[STORE]``) keeps the contacts of sleeping islands for when they wake
-      (:mod:`sandbox.sleep`).
+      (:mod:`sandbox.sleeping_contacts`).
     - ``proxies`` (m,) PROXY records: the broadphase's boxes and sweep order for the m shapes.
     - ``pairs`` (2, capacity, 2) int64: the pair list as found (``pairs[0]``) and sorted
       (``pairs[1]``).

@@ -126,7 +126,7 @@ CONTACT_POINT = np.dtype(
 )
 
 STORE = 2  # the contact sets: 0 and 1 take turns (the last step's, this step's), 2 keeps the
-# contacts of sleeping islands for when they wake (sandbox.sleep)
+# contacts of sleeping islands for when they wake (sandbox.sleeping_contacts)
 
 CONTACT = np.dtype(
     [

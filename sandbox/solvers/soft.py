@@ -268,7 +268,8 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     max_push, deep, recovery = push
     nx, ny = c["normal"][0], c["normal"][1]
     mass = masses(c)
-    held = hold_sag(c, recovery) if use_bias else 0.0  # from the separations the pass reads
+    recover = use_bias and recovery > 0.0  # sag recovery off: held_sag stays 0, as prepared
+    held = hold_sag(c, recovery) if recover else 0.0  # from the separations the pass reads
     va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
     for j in range(c["count"]):
         p = c["points"][j]
@@ -291,7 +292,7 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
         p["normal_impulse"] = new
         p["max_normal_impulse"] = max(p["max_normal_impulse"], new)
         va, vb = apply_normal(va, vb, mass, p, nx, ny, new - old)
-        if use_bias:
+        if recover:
             p["held_sag"] = held
     for j in range(c["count"]):
         p = c["points"][j]
