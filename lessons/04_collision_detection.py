@@ -454,7 +454,8 @@ print_table(["case", "d", "p hand", "p engine", "n hand", "n engine", "pc hand",
 # %%
 def decode(fid: int) -> str:
     code, va, vb = fid >> 32, (fid >> 16) & 0xFFFF, fid & 0xFFFF
-    return f"{fid} = ref on {'ab'[code]}, v{va} / v{vb}" if code < 2 else f"{fid} (vertex-vertex)"
+    kind = "faces" if code == 0 else "vertex-vertex"
+    return f"{fid} = {kind}, a's v{va} / b's v{vb}"
 
 
 world = CASES["line of contact"]
