@@ -111,6 +111,14 @@ LESSON_FAMILIES = (
 )
 
 
+# the lessons' families the first share compiles last (the soft step's, then record_kernels): a
+# first `sandbox lessons` starts the lessons that need none of them as soon as every other family
+# is ready (on the core the second share has finished with), told by the file named in
+# EARLY_READY, which the warmup creates then (sandbox.cli.lessons)
+LATE_FAMILIES = ("soft solver", "soft solver, staged")
+EARLY_READY = "SANDBOX_WARMUP_EARLY_READY"
+
+
 def worlds(lessons: bool = False):
     """(label, world, staged) of every family the step compiles; ``lessons``: only those of
     :data:`LESSON_FAMILIES`."""
@@ -331,7 +339,9 @@ def warm_up(report=print, jobs: int | None = None, lessons: bool = False) -> flo
     jobs = jobs or min(2, os.cpu_count() or 1)
     if CACHE_FOLDER is None:  # nothing to share: each process would compile it all
         jobs = 1
-    once = Once(report)
+    signal = os.environ.get(EARLY_READY) if lessons else None
+    early = {f"  {label}: ready" for label in LESSON_FAMILIES if label not in LATE_FAMILIES}
+    once = Once(report, early, signal)
     others = [
         subprocess.Popen(
             [sys.executable, "-m", "sandbox", "warmup", "--part", f"{i}/{jobs}"]
@@ -361,10 +371,12 @@ def warm_up(report=print, jobs: int | None = None, lessons: bool = False) -> flo
 
 class Once:
     """``report`` for each line the first time it comes (a family the other process compiled
-    is stepped again here at the end, to load it: it is not ready twice), from any thread."""
+    is stepped again here at the end, to load it: it is not ready twice), from any thread; and
+    once every line of ``early`` has come, the file ``signal`` created (when not None)."""
 
-    def __init__(self, report) -> None:
+    def __init__(self, report, early: set[str] | None = None, signal: str | None = None) -> None:
         self.report, self.seen, self.lock = report, set(), threading.Lock()
+        self.early, self.signal = early or set(), signal
 
     def __call__(self, line: str) -> None:
         with self.lock:
@@ -372,6 +384,10 @@ class Once:
                 return
             self.seen.add(line)
             self.report(line)
+            if self.signal is not None and self.early <= self.seen:
+                with open(self.signal, "w"):  # the lessons that need only these can start
+                    pass
+                self.signal = None
 
 
 def relay(stream, report) -> None:

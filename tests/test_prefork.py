@@ -251,3 +251,19 @@ def test_a_server_loads_the_engine_when_asked(tmp_path):
         after = loaded_steps(specs, tmp_path)
     assert not any(before) and all(after), (before, after)
     assert not prefork.request_engine(tmp_path / "no-server")  # nothing listens: False
+
+
+@pytest.mark.skipif(not compile_cache.is_warm(), reason="the steps are not compiled yet")
+def test_asked_early_the_server_loads_all_but_the_soft_step(tmp_path):
+    # a first `sandbox lessons` on two cores: once every family but the soft step's is
+    # compiled, the server loads those, and the lessons without the soft step start with them;
+    # asked again when the warmup is done, it loads the soft step too
+    address = tmp_path / "early"
+    with prefork.Server(address, dict(os.environ)):
+        specs = prefork.write_spec(tmp_path / "kernels", address)
+        assert prefork.request_engine(address, early=True)
+        early = loaded_steps(specs, tmp_path)
+        assert prefork.request_engine(address)
+        late = loaded_steps(specs, tmp_path)
+    assert early[0] > 0 and early[1] == 0, early
+    assert all(late), late

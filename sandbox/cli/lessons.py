@@ -9,7 +9,9 @@ import os
 import subprocess
 import sys
 import tempfile
-from concurrent.futures import ThreadPoolExecutor
+import threading
+import time
+from concurrent.futures import Future
 from pathlib import Path
 
 from sandbox.cli.common import CliError, field_type
@@ -110,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _compile_first(chosen: int) -> subprocess.Popen | None:
+def _compile_first(chosen: int, early: Path | None = None) -> subprocess.Popen | None:
     """On a machine where the engine was never compiled: for more than :data:`FEW` lesson,
     start compiling what the lessons need once before them (``sandbox warmup --lessons``: on a
     terminal its progress bar, elsewhere a line per family of kernels ready), rather than in
@@ -132,7 +134,11 @@ def _compile_first(chosen: int) -> subprocess.Popen | None:
 
     If a background warmup (an earlier run's) is compiling, it is waited for
     (:func:`sandbox.cli.first_run.wait_for_warmup`) instead of being run again beside it: all
-    lessons right after ``sandbox lessons 01`` took 191.8 s, and 125.3 s waiting."""
+    lessons right after ``sandbox lessons 01`` took 191.8 s, and 125.3 s waiting.
+
+    ``early``: a file the warmup creates once every family of the lessons but the soft step's
+    is ready (:data:`sandbox.warmup.EARLY_READY`), so that the lessons that need none of those
+    start then (:func:`_run_all`)."""
     from sandbox.compile_cache import CACHE_FOLDER, is_warm
 
     if os.environ.get("SANDBOX_JIT") == "0" or CACHE_FOLDER is None or is_warm():
@@ -160,7 +166,10 @@ def _compile_first(chosen: int) -> subprocess.Popen | None:
         "rest of the engine compiles in the background after them)",
         flush=True,
     )
-    return subprocess.Popen([sys.executable, "-m", "sandbox", "warmup", "--lessons"])
+    from sandbox.warmup import EARLY_READY
+
+    env = dict(os.environ, **({EARLY_READY: str(early)} if early is not None else {}))
+    return subprocess.Popen([sys.executable, "-m", "sandbox", "warmup", "--lessons"], env=env)
 
 
 def _compile_rest() -> None:
@@ -189,7 +198,10 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
 
     While the warmup compiles, the lessons' kernel server imports its libraries (the lessons'
     first kernels would otherwise wait for it), and loads the compiled engine once the warmup
-    is done.
+    is done. The warmup's second share ends a few seconds before its first, which compiles the
+    soft step last: from then on, one lesson at a time that does not need the soft step
+    (:attr:`sandbox.course.catalogue.Lesson.needs_soft_kernels`) runs on the core it left, its
+    kernel started with the rest of the engine loaded (:class:`Schedule`).
     """
     from contextlib import ExitStack
 
@@ -203,9 +215,10 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
         run_script,
     )
 
-    warmup = _compile_first(len(chosen))
     with ExitStack() as stack:
         tmp = stack.enter_context(tempfile.TemporaryDirectory(prefix="sandbox-kernel-"))
+        early = Path(tmp) / "early-ready"
+        warmup = _compile_first(len(chosen), early if jobs > 1 else None)
         # kernels start with the compiled engine: at once when it is in the cache, else once
         # the warmup has compiled it (the server imports its libraries meanwhile); only for more
         # lessons than run at a time, as the server loads it before the first kernel starts
@@ -227,15 +240,65 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
             count = sum(compiled_in(log) for log in logs.glob("*.compiles"))
             return f"{count} kernels compiled" if count else ""
 
-        longest_first = sorted(chosen, key=lambda lesson: -lesson.path.stat().st_size)
-        if warmup is not None and warmup.wait() == 0 and specs is not None:
-            load_engine(specs)  # what the warmup compiled, once, for every kernel
-        with LessonBar(len(chosen), compiled) as bar, ThreadPoolExecutor(jobs) as pool:
-            running = {lesson.stem: pool.submit(one, lesson) for lesson in longest_first}
-            outcomes = [bar.report(running[lesson.stem].result()) for lesson in chosen]
+        schedule = Schedule(chosen, one, jobs)
+        with LessonBar(len(chosen), compiled) as bar:
+            if warmup is None:
+                schedule.open(early=True, late=True)
+            else:
+                while warmup.poll() is None:  # the first lessons start once the rest is ready
+                    if early.exists() and not schedule.early.is_set():
+                        if specs is not None:
+                            load_engine(specs, early=True)
+                        schedule.open(early=True)
+                    time.sleep(0.1)
+                if warmup.returncode == 0 and specs is not None:
+                    load_engine(specs)  # what the warmup compiled, once, for every kernel
+                schedule.open(early=True, late=True)
+            outcomes = [bar.report(schedule.results[lesson.stem].result()) for lesson in chosen]
     if warmup is not None:
         _compile_rest()
     return outcomes
+
+
+class Schedule:
+    """Worker threads running ``run(lesson)`` for each lesson, longest first (by the size of
+    its source). One worker starts once :meth:`open` says ``early``, and runs only lessons that
+    do not need the soft step's kernels until it says ``late``; the others start then, and from
+    then on every lesson may run. ``results[stem]`` is each lesson's future."""
+
+    def __init__(self, lessons, run, jobs: int) -> None:
+        self.pending = sorted(lessons, key=lambda lesson: -lesson.path.stat().st_size)
+        self.results = {lesson.stem: Future() for lesson in lessons}
+        self.run, self.lock = run, threading.Lock()
+        self.early, self.late = threading.Event(), threading.Event()
+        for k in range(jobs):
+            gate = self.early if k == 0 else self.late
+            threading.Thread(target=self._work, args=(gate,), daemon=True).start()
+
+    def open(self, early: bool = False, late: bool = False) -> None:
+        """Let the early worker (``early``), then every worker and every lesson (``late``) go."""
+        if late:
+            self.late.set()
+        if early or late:
+            self.early.set()
+
+    def _next(self):
+        """The next lesson to run, or None when none is left; waits while only lessons that
+        need the soft step's kernels are left and those are not loaded yet."""
+        while True:
+            with self.lock:
+                if not self.pending:
+                    return None
+                late = self.late.is_set()
+                for i, lesson in enumerate(self.pending):
+                    if late or not lesson.needs_soft_kernels:
+                        return self.pending.pop(i)
+            self.late.wait()
+
+    def _work(self, gate: threading.Event) -> None:
+        gate.wait()
+        while (lesson := self._next()) is not None:
+            self.results[lesson.stem].set_result(self.run(lesson))
 
 
 class LessonBar:

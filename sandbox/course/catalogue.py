@@ -7,6 +7,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+# what a lesson's source says when it runs the soft step's kernels (Lesson.needs_soft_kernels)
+SOFT_KERNEL_NAMES = ('"soft"', "'soft'", "solve_joints_direct", "solve_joints_soft", "colour(")
+
 
 @dataclass(frozen=True)
 class Lesson:
@@ -31,6 +34,15 @@ class Lesson:
     def opening(self) -> str:
         """The first paragraph after the title (Markdown), or ""."""
         return self.intro()[1]
+
+    @property
+    def needs_soft_kernels(self) -> bool:
+        """Whether the lesson runs the soft step or calls the kernels a first run's warmup
+        compiles after it (:data:`sandbox.warmup.LATE_FAMILIES`): its source names the solver
+        ``"soft"``, the soft step's joint passes or the colouring. The others can start before
+        those are compiled (:mod:`sandbox.cli.lessons`)."""
+        source = self.path.read_text(encoding="utf-8")
+        return any(name in source for name in SOFT_KERNEL_NAMES)
 
     def intro(self) -> tuple[str, str]:
         """``(title, opening paragraph)`` read from the first Markdown cell of the file."""

@@ -150,7 +150,7 @@ def serve(address: str, parent: int, engine: bool = False) -> None:
             connection.close()
             continue
         if request.get("engine"):  # the lessons' kernels are compiled now (request_engine)
-            load_engine()
+            load_engine(bool(request.get("early")))
             _reply(connection, "loaded")
             continue
         pid = 0  # none forked: the launcher starts an ordinary kernel
@@ -173,23 +173,25 @@ def _reply(connection: socket.socket, line: str) -> None:
     connection.close()
 
 
-def request_engine(address: Path, timeout: float = 120.0) -> bool:
+def request_engine(address: Path, timeout: float = 120.0, early: bool = False) -> bool:
     """Have the server at ``address`` load the compiled engine now (:func:`load_engine`), once
-    what the lessons need is in the cache: a server started while it was being compiled
+    what the lessons need is in the cache (``early``: all but the soft step's kernels, which
+    a first run's warmup compiles last): a server started while it was being compiled
     (``sandbox lessons`` on a new machine) imports its libraries meanwhile. Returns when the
     server has loaded it (whether it answered): kernels asked for in the meantime wait, and
     start with it."""
+    request = json.dumps({"engine": True, "early": early}) + "\n"
     try:
         with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as connection:
             connection.settimeout(timeout)
             connection.connect(str(address))
-            connection.sendall(b'{"engine": true}\n')
+            connection.sendall(request.encode())
             return connection.recv(64).startswith(b"loaded")
     except OSError:
         return False
 
 
-def load_engine() -> None:
+def load_engine(early: bool = False) -> None:
     """Load from the cache what the lessons run, so that every kernel starts with it: each
     family of :data:`sandbox.warmup.LESSON_FAMILIES`, stepped once on a small world (the
     iterative and soft steps in one call and stage by stage, the other solvers, continuous
@@ -197,16 +199,22 @@ def load_engine() -> None:
     (:func:`sandbox.warmup.helpers`); then a first figure drawn, which loads the fonts and
     mathtext's parser. A kernel otherwise loads its share itself, lesson after lesson. Only
     when the cache holds them (the caller knows): else this process would compile them, for a
-    minute."""
+    minute. ``early``: all but what a first run's warmup compiles last
+    (:data:`sandbox.warmup.LATE_FAMILIES` and :func:`sandbox.warmup.record_kernels`); called
+    again later, what was loaded already costs nothing."""
     from io import BytesIO
 
     import matplotlib.pyplot as plt
 
-    from sandbox.warmup import helpers, warm_families, worlds
+    from sandbox.warmup import LATE_FAMILIES, helpers, lesson_kernels, warm_families, worlds
 
     try:
-        warm_families(worlds(lessons=True), report=lambda line: None)
-        helpers()
+        families = [f for f in worlds(lessons=True) if not early or f[0] not in LATE_FAMILIES]
+        warm_families(families, report=lambda line: None)
+        if early:
+            lesson_kernels()
+        else:
+            helpers()
     except Exception:  # a kernel loads it itself (or reports why it cannot)
         pass
     fig, ax = plt.subplots()

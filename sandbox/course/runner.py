@@ -155,15 +155,16 @@ def server_address(folder: Path) -> Path:
     return folder / "prefork"
 
 
-def load_engine(specs: Path) -> None:
+def load_engine(specs: Path, early: bool = False) -> None:
     """Have the kernels of :func:`kernels` (``specs``, started with ``engine`` False) start with
-    the compiled engine from now on, once what the lessons need is in the cache
-    (:func:`sandbox.course.prefork.request_engine`; nothing where kernels are not forked)."""
+    the compiled engine from now on, once what the lessons need is in the cache (``early``:
+    all but the soft step's kernels; :func:`sandbox.course.prefork.request_engine`; nothing
+    where kernels are not forked)."""
     from sandbox.course import prefork
 
     address = server_address(specs.parent)
     if prefork.available() and address.exists():
-        prefork.request_engine(address)
+        prefork.request_engine(address, early=early)
 
 
 def run_notebook(lesson: Lesson, outputs: Path, specs: Path, logs: Path | None = None) -> Outcome:
