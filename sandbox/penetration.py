@@ -317,13 +317,11 @@ def rebound(contacts, k: int, bodies) -> None:
 
 
 @njit
-def fix_positions(
-    contacts, k: int, joints, bodies, rot, context, joints_together: bool = False
-) -> float:
+def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     """The position stage every solver shares: the rebound, then up to
     ``position_iterations`` passes of the penetration fix, each followed by the joints'
-    position pass (swept, or solved together with ``joints_together``, as the soft step does
-    where its plan solves the relax pass together:
+    position pass (swept, or solved together when ``context["joints_together"]`` says so, as
+    the soft step does where its plan solves the relax pass together:
     :func:`sandbox.joints.positions_together.solve_joint_positions_together`), until a pass
     finds no point overlapping more than ``position_tolerance`` (and the joints within the
     slop; Box2D 2.x's test: a resting pile takes one pass, a deep overlap all of them); then
@@ -367,7 +365,7 @@ def fix_positions(
             if settled or not moved:
                 break
             continue
-        if joints_together:
+        if ctx["joints_together"]:
             joint_error = solve_joint_positions_together(joints, bodies)
         else:
             joint_error = solve_joint_positions(joints, bodies)

@@ -314,6 +314,8 @@ CONTEXT = np.dtype(
         ("warm_started_points", I8),
         ("shock_layers", I8),
         ("position_passes", I8),  # position passes in the last step (sandbox.penetration)
+        ("joints_together", np.bool_),  # the position stage solves the joints together (the
+        # soft step's plan, set each step; the rigid steps sweep them)
         ("sweeps", I8),  # iterative solver: velocity sweeps in the last step (more at a large dt)
         ("sweep_direction", I8),  # sweep and prune: the direction PROXY["order"] is sorted
         # along (sandbox.broadphase.sap.DIRECTIONS), -1: none yet

@@ -306,8 +306,15 @@ def fast_step(
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
     plan_motion(bodies, ctx["dt"])
     move_bodies(bodies, rot, context)
+    ctx["joints_together"] = False  # the rigid step sweeps its joints' position passes
     fix_positions(contacts, k, joints, bodies, rot, context)
     return finish_step(contacts, k, joints, bodies, context)
+
+
+# each substep solves with the soft bias, moves the bodies, then relaxes (no bias); a loop over
+# the two rather than two calls, so that each solver is compiled once for a bias flag known only
+# as it runs (a constant True or False would compile a version of each)
+SOLVE_THEN_RELAX = (True, False)
 
 
 @njit
@@ -328,15 +335,16 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work, plan) 
         warm_start_joints_soft(joints, bodies)
         if ctx["warm_start"]:
             warm_start(contacts, k, bodies)
-        solve_joints_soft_pass(joints, bodies, joint_soft, True, 1.0 / h, plan)
-        solve_soft(contacts, order, bodies, context, True)
-        plan_motion(bodies, h)
-        if ccd:  # no narrowphase between substeps: what it found before them
-            frac = limit_ccd_motion(bodies, shapes, vertices, context, (contacts, k, joints))
-            hold_stopped(bodies, frac, stopped)
-        move_bodies(bodies, rot, context)
-        solve_joints_soft_pass(joints, bodies, joint_soft, False, 1.0 / h, plan)
-        solve_soft(contacts, order, bodies, context, False)
+        for biased in SOLVE_THEN_RELAX:
+            solve_joints_soft_pass(joints, bodies, joint_soft, biased, 1.0 / h, plan)
+            solve_soft(contacts, order, bodies, context, biased)
+            if not biased:
+                break
+            plan_motion(bodies, h)
+            if ccd:  # no narrowphase between substeps: what it found before them
+                frac = limit_ccd_motion(bodies, shapes, vertices, context, (contacts, k, joints))
+                hold_stopped(bodies, frac, stopped)
+            move_bodies(bodies, rot, context)
 
 
 @njit
@@ -371,7 +379,8 @@ def soft_step(
     begin_soft(contacts, k, (previous, sets[STORE]), model, context)
     plan = soft_joint_plan(joints, bodies, context)
     soft_substeps(contacts, k, model, rot, context, False, work, plan)
-    fix_positions(contacts, k, joints, bodies, rot, context, plan[1])
+    ctx["joints_together"] = plan[1]  # as the relax pass
+    fix_positions(contacts, k, joints, bodies, rot, context)
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
     return finish_step(contacts, k, joints, bodies, context)
 
@@ -526,12 +535,13 @@ def position_stage(world, a, found, joints_together: bool) -> None:
     """The position stage of the staged steps (:func:`~sandbox.penetration.fix_positions`;
     ``joints_together`` as the soft step plans it, False in the rigid step), with its moves of
     the ``ccd`` bodies swept when the world has any
-    (:func:`~sandbox.ccd_positions.sweep_position_moves`). Every argument is passed: with its
-    default left out, this call took numba's slow dispatch every step, 1.4 ms
-    (tests/test_dispatch.py)."""
+    (:func:`~sandbox.ccd_positions.sweep_position_moves`). Every argument is passed (the flag
+    in the context, as the one-call steps pass it): with a default left out, this call took
+    numba's slow dispatch every step, 1.4 ms (tests/test_dispatch.py)."""
     contacts, k = found
     before = poses(a.bodies) if world.has_ccd else None
-    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context, bool(joints_together))
+    a.context[0]["joints_together"] = joints_together
+    fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
     if before is not None:
         geometry = (a.bodies, a.rot, a.shapes, a.vertices, a.context)
         sweep_position_moves(*geometry, before, (contacts, k, a.joints))

@@ -4,7 +4,7 @@ numba calls a compiled function from Python through its dispatcher: the argument
 matched against the compiled signatures in C, in about a microsecond. A call that matches none
 of them goes through ``_compile_for_args`` in Python, which types each record array afresh
 (about 0.3 ms apiece). The position stage of the staged step left out the last argument of
-``fix_positions`` (a default); that call never matched the machine code compiled for it and
+``fix_positions`` (a default, since moved into the step's context); that call never matched the machine code compiled for it and
 took the slow path every step: every staged step (pairwise and shock solvers, the other
 broadphases, continuous collision, a stage timer) cost 1.4 ms more, ten times a whole step
 of 100 circles. Passing every argument matches at once.
@@ -65,22 +65,24 @@ def test_later_steps_never_take_the_slow_dispatch(label, slow_dispatches):
 
 
 def test_the_counter_sees_the_slow_dispatch_this_test_was_written_for(slow_dispatches):
-    # the measure itself, on the call that took the slow path: the position stage with its
-    # last argument (a default) left out, every time
-    from sandbox.penetration import fix_positions
+    # the measure itself, on a call that takes the slow path: a compiled function with its
+    # last arguments (defaults) left out, every time (the position stage's call did this,
+    # before its flag moved into the step's context: sandbox.step.position_stage)
+    import numpy as np
 
-    world = warmup.sample_world(solver="pairwise")
-    world.step()
-    a = world.arrays()
-    stage = (a.buffers.sets[0], 0, a.joints, a.bodies, a.rot, a.context)
-    fix_positions(*stage, False)
-    fix_positions(*stage)
+    from sandbox.toi import time_of_impact
+
+    disc = (0, 0.5, np.zeros(2), np.zeros((0, 2)))
+    still, moving = (np.zeros(2), 0.0, np.zeros(2), 0.0), (np.zeros(2), 0.0, np.ones(2), 0.0)
+    args = (disc, moving, disc, still)
+    time_of_impact(*args, 0.0, 1e-4)
+    time_of_impact(*args)
     slow_dispatches.clear()
-    fix_positions(*stage, False)
+    time_of_impact(*args, 0.0, 1e-4)
     assert slow_dispatches == []
-    fix_positions(*stage)
-    fix_positions(*stage)
-    assert slow_dispatches == ["fix_positions"] * 2
+    time_of_impact(*args)
+    time_of_impact(*args)
+    assert slow_dispatches == ["time_of_impact"] * 2
 
 
 def test_the_warmup_compiles_what_lessons_call_from_python(slow_dispatches):

@@ -342,5 +342,9 @@ def solve_soft(contacts, order, bodies, context, use_bias: bool) -> None:
     t = ctx["sag_recovery_time"]
     recovery = 1.0 / (inv_h * t) if t > 0.0 else 0.0  # h / T
     push = (ctx["max_push_speed"], ctx["deep_overlap"], recovery)
-    for q in range(order.shape[0]):
-        solve_soft_contact(contacts[order[q]], bodies, inv_h, use_bias, push)
+    if use_bias:  # the visit compiled for each pass, its flag a constant (the hot loop)
+        for q in range(order.shape[0]):
+            solve_soft_contact(contacts[order[q]], bodies, inv_h, True, push)
+    else:
+        for q in range(order.shape[0]):
+            solve_soft_contact(contacts[order[q]], bodies, inv_h, False, push)
