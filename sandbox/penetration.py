@@ -32,20 +32,17 @@ import numpy as np
 from sandbox.jit import JIT_ENABLED, njit
 from sandbox.joints.positions_together import solve_joint_positions_together
 from sandbox.joints.solve import solve_joint_positions
-from sandbox.math2d import nudge, pose_of, set_pose
+from sandbox.math2d import cross, effective_mass, nudge, pose_of, set_pose
 from sandbox.orientation import turn_bodies
-from sandbox.solvers.impulses import points_pushed, push_point, separation_of
+from sandbox.solvers.impulses import push_point, separation_of
 from sandbox.solvers.shock import contact_layers, hold_lower, touching
 from sandbox.solvers.soft import excess_depth
 from sandbox.solvers.wide_positions import (
-    REST_ROW,
     allowed_separation,
-    fill_rest_row,
     plan,
     put_poses,
     take_poses,
     visit_colour,
-    visit_rest,
 )
 
 HALF, MASS_WEIGHTED, IMPULSE = 0, 1, 2
@@ -84,18 +81,16 @@ def position_order(contacts, k: int, bodies, layered: bool, gap: float, bounds, 
     if not layered:
         order, lanes, owners, starts, alone = plan(contacts, k, bodies, bounds, wide)
         layering = order, np.zeros(bodies.shape[0], dtype=np.int64)
-        rest = pack_rest(contacts, order if wide else order[:0], bodies, bounds, layering[1])
-        return layering, (lanes, owners, starts, alone, rest)
+        return layering, (lanes, owners, starts, alone)
     layer = contact_layers(contacts, k, bodies, gap)
     n = bodies.shape[0]
     key = np.empty(k, dtype=np.int64)
     for i in range(k):
         la, lb = min(layer[contacts[i]["a"]], n), min(layer[contacts[i]["b"]], n)
         key[i] = 2 * max(la, lb) + (la == lb)  # (0, 1), then (1, 1), then (1, 2), ...
-    order, none = counting_order(key, 2 * n + 2), np.zeros(0, dtype=np.int64)
-    rest = pack_rest(contacts, order if wide else none, bodies, bounds, layer)
-    lanes = (np.zeros(0), np.zeros((3, 0), dtype=np.int64), np.zeros(1, dtype=np.int64), none, rest)
-    return (order, layer), lanes
+    none = np.zeros(0, dtype=np.int64)
+    lanes = (np.zeros(0), np.zeros((3, 0), dtype=np.int64), np.zeros(1, dtype=np.int64), none)
+    return (counting_order(key, 2 * n + 2), layer), lanes
 
 
 @njit
@@ -169,24 +164,6 @@ def holds(c, bodies, layer) -> bool:
 
 
 @njit
-def pack_rest(contacts, order, bodies, bounds, layer):
-    """The contacts a compiled pass visits one by one (``order``, the pass's order), packed
-    once a step into compact rows (:func:`sandbox.solvers.wide_positions.fill_rest_row`), with
-    the masses the pass pushes with (:func:`position_masses`, ``layer`` each body's layer):
-    ``(rows, ends)``, ``ends[q]`` = (body a, body b, points, held). A pass then reads 18
-    numbers a contact instead of a 592-byte record and two 336-byte bodies
-    (:func:`sandbox.solvers.wide_positions.visit_rest`). ``bounds`` = (slop, push) (m)."""
-    rows = np.zeros((len(order), REST_ROW))
-    ends = np.empty((len(order), 4), dtype=np.int64)
-    for q in range(len(order)):
-        c = contacts[order[q]]
-        mass, held = position_masses(c, bodies, layer)
-        ends[q, 0], ends[q, 1], ends[q, 2], ends[q, 3] = c["a"], c["b"], c["count"], held
-        fill_rest_row(rows[q], c, mass, bounds)
-    return rows, ends
-
-
-@njit
 def push_apart(contacts, k: int, bodies, weighted: bool, bounds, layering) -> float:
     """Options 1 and 2, one pass: translate each pair apart by p = deepest overlap beyond the
     allowed separation. ``bounds`` = (slop, push) (m); ``layering`` = (order, layer) from
@@ -223,12 +200,33 @@ def push_points(c, bodies, mass, errors, arms) -> None:
     change by -error (linearised): K lambda = -error with K_ij = 1/m_a + 1/m_b +
     (r_ai x n)(r_aj x n) / I_a + (r_bi x n)(r_bj x n) / I_b, both points together when both
     push (a box flat on another rises without turning), else the point with the larger error
-    alone (:func:`sandbox.solvers.impulses.points_pushed`)."""
+    alone."""
+    im_a, ii_a, im_b, ii_b = mass
+    nx, ny = c["normal"][0], c["normal"][1]
+    rn_a = (cross(arms[0], arms[1], nx, ny), cross(arms[4], arms[5], nx, ny))
+    rn_b = (cross(arms[2], arms[3], nx, ny), cross(arms[6], arms[7], nx, ny))
+    k11 = effective_mass(im_a, ii_a, im_b, ii_b, rn_a[0], rn_b[0])
+    l1 = l2 = 0.0
+    if c["count"] == 2:
+        k22 = effective_mass(im_a, ii_a, im_b, ii_b, rn_a[1], rn_b[1])
+        k12 = im_a + im_b + ii_a * rn_a[0] * rn_a[1] + ii_b * rn_b[0] * rn_b[1]
+        det = k11 * k22 - k12 * k12
+        if det > 1e-12 * k11 * k22:
+            l1 = -(k22 * errors[0] - k12 * errors[1]) / det
+            l2 = -(k11 * errors[1] - k12 * errors[0]) / det
+        if not (l1 >= 0.0 and l2 >= 0.0):  # not both: the deeper point alone
+            l1 = l2 = 0.0
+            if errors[1] < errors[0]:
+                l2 = -errors[1] / k22 if k22 > 0.0 else 0.0
+            else:
+                l1 = -errors[0] / k11 if k11 > 0.0 else 0.0
+    elif k11 > 0.0:
+        l1 = -errors[0] / k11
+    lam = l1 + l2
     a, b = bodies[c["a"]], bodies[c["b"]]
-    n = (c["normal"][0], c["normal"][1])
-    pose_a, pose_b = points_pushed(pose_of(a), pose_of(b), c["count"], n, mass, errors, arms)
-    set_pose(a, pose_a)
-    set_pose(b, pose_b)
+    turn_a, turn_b = rn_a[0] * l1 + rn_a[1] * l2, rn_b[0] * l1 + rn_b[1] * l2
+    nudge(a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * turn_a)
+    nudge(b, im_b * lam * nx, im_b * lam * ny, ii_b * turn_b)
 
 
 @njit
@@ -280,22 +278,21 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
 
 
 @njit
-def wide_position_impulses(bodies, beta: float, lanes):
+def wide_position_impulses(contacts, bodies, beta: float, bounds, layering, lanes):
     """Option 3, one pass, as :func:`position_impulses` in the order of
-    :func:`position_order` (not layered, ``lanes`` its lanes): the colours' contacts eight at
-    a time (:func:`sandbox.solvers.wide_positions.visit_colour`), then the others one by one
-    from their compact rows (:func:`sandbox.solvers.wide_positions.visit_rest`), all on the
-    bodies' poses gathered into one small array. The same numbers, faster
-    (:data:`sandbox.solvers.wide_positions.MEASURED`, :func:`pack_rest`)."""
-    lanes, owners, starts, _, rest = lanes
+    :func:`position_order` (not layered): the colours' contacts eight at a time
+    (:func:`sandbox.solvers.wide_positions.visit_colour`), then the others one by one. The
+    same numbers, faster (:data:`sandbox.solvers.wide_positions.MEASURED`)."""
+    lanes, owners, starts, alone = lanes
     worst, moved = 0.0, False
-    poses = np.zeros((len(bodies) + 1, 5))
-    take_poses(bodies, poses)
-    for c in range(len(starts) - 1):
-        w, m = visit_colour(lanes, owners, starts[c], starts[c + 1], poses, beta)
-        worst, moved = min(worst, w), moved | m
-    w, m = visit_rest(rest, poses, beta)
-    put_poses(poses, bodies)
+    if len(starts) > 1:
+        poses = np.zeros((len(bodies) + 1, 5))
+        take_poses(bodies, poses)
+        for c in range(len(starts) - 1):
+            w, m = visit_colour(lanes, owners, starts[c], starts[c + 1], poses, beta)
+            worst, moved = min(worst, w), moved | m
+        put_poses(poses, bodies)
+    w, m = position_impulses(contacts, len(alone), bodies, beta, bounds, layering)
     return min(worst, w), moved | m
 
 
@@ -345,11 +342,13 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     triggers = (ctx["deep_overlap"], ctx["hold_heavier"])
     layered = robust and needs_layers(contacts, k, bodies, triggers, gap)
     bounds = (slop, push)
-    wide = JIT_ENABLED and method == IMPULSE and ctx["position_iterations"] > 0
+    wide = JIT_ENABLED and method == IMPULSE and not layered and ctx["position_iterations"] > 0
     layering, lanes = position_order(contacts, k, bodies, layered, gap, bounds, wide)
     for _ in range(ctx["position_iterations"]):
         if wide:
-            worst, moved = wide_position_impulses(bodies, ctx["baumgarte"], lanes)
+            worst, moved = wide_position_impulses(
+                contacts, bodies, ctx["baumgarte"], bounds, layering, lanes
+            )
         elif method == IMPULSE:
             worst, moved = position_impulses(
                 contacts, k, bodies, ctx["baumgarte"], bounds, layering

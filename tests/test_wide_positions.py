@@ -33,11 +33,11 @@ def test_wide_passes_equal_the_record_passes_bit_for_bit(case, depth):
     if depth != "as found":
         contacts, bodies = sunk(contacts, bodies)
     k = len(contacts)
-    _, lanes = position_order(contacts, k, bodies, False, GAP, BOUNDS, True)
+    layering, lanes = position_order(contacts, k, bodies, False, GAP, BOUNDS, True)
     records = position_order(contacts, k, bodies, False, GAP, BOUNDS, False)[0]
     wide_b, record_b = bodies.copy(), bodies.copy()
     for _ in range(3):
-        got = wide_position_impulses(wide_b, BETA, lanes)
+        got = wide_position_impulses(contacts, wide_b, BETA, BOUNDS, layering, lanes)
         want = position_impulses(contacts, k, record_b, BETA, BOUNDS, records)
         assert got == want
     for field in ("com", "cs", "turn"):
@@ -52,7 +52,7 @@ def test_wide_passes_equal_the_record_passes_bit_for_bit(case, depth):
 def test_the_order_is_colour_by_colour_then_the_rest_interleaved(case):
     contacts, bodies = CASES[case]()
     k = len(contacts)
-    (order, _), (_, owners, starts, alone, _) = position_order(
+    (order, _), (_, owners, starts, alone) = position_order(
         contacts, k, bodies, False, GAP, BOUNDS, False
     )
     assert sorted(order) == list(range(k))
@@ -85,10 +85,10 @@ def test_a_held_contact_still_counts_its_bodies_as_moving():
                     moving.append(held[side][i])
         assert len(moving) == len(set(moving))
     sunk_held, _ = sunk(held, bodies)
-    _, lanes = position_order(sunk_held, k, bodies, False, GAP, BOUNDS, True)
+    layering, lanes = position_order(sunk_held, k, bodies, False, GAP, BOUNDS, True)
     records = position_order(sunk_held, k, bodies, False, GAP, BOUNDS, False)[0]
     wide_b, record_b = bodies.copy(), bodies.copy()
-    got = wide_position_impulses(wide_b, BETA, lanes)
+    got = wide_position_impulses(sunk_held, wide_b, BETA, BOUNDS, layering, lanes)
     assert got == position_impulses(sunk_held, k, record_b, BETA, BOUNDS, records)
     assert np.array_equal(wide_b["com"], record_b["com"])
 
@@ -98,8 +98,8 @@ def test_empty_contact_list():
         2, dtype=CASES["a plank under 80 boxes (contacts no colour takes)"]()[1].dtype
     )
     contacts = np.zeros(0, dtype=CONTACT)
-    _, lanes = position_order(contacts, 0, bodies, False, GAP, BOUNDS, True)
-    assert wide_position_impulses(bodies, BETA, lanes) == (0.0, False)
+    layering, lanes = position_order(contacts, 0, bodies, False, GAP, BOUNDS, True)
+    assert wide_position_impulses(contacts, bodies, BETA, BOUNDS, layering, lanes) == (0.0, False)
 
 
 def test_the_lane_loop_compiles_to_vector_instructions():

@@ -115,35 +115,3 @@ def push_point(pose_a, pose_b, mass, n, point, beta: float):
     pose_a = nudged(pose_a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * rn_a * lam)
     pose_b = nudged(pose_b, im_b * lam * nx, im_b * lam * ny, ii_b * rn_b * lam)
     return pose_a, pose_b, sep, pushed
-
-
-@njit(inline="always")
-def points_pushed(pose_a, pose_b, count: int, n, mass, errors, arms):
-    """The poses :func:`sandbox.penetration.push_points` leaves (``count`` points, normal
-    ``n``): the manifold's points pushed together, or the deeper alone."""
-    im_a, ii_a, im_b, ii_b = mass
-    nx, ny = n
-    rn_a = (cross(arms[0], arms[1], nx, ny), cross(arms[4], arms[5], nx, ny))
-    rn_b = (cross(arms[2], arms[3], nx, ny), cross(arms[6], arms[7], nx, ny))
-    k11 = effective_mass(im_a, ii_a, im_b, ii_b, rn_a[0], rn_b[0])
-    l1 = l2 = 0.0
-    if count == 2:
-        k22 = effective_mass(im_a, ii_a, im_b, ii_b, rn_a[1], rn_b[1])
-        k12 = im_a + im_b + ii_a * rn_a[0] * rn_a[1] + ii_b * rn_b[0] * rn_b[1]
-        det = k11 * k22 - k12 * k12
-        if det > 1e-12 * k11 * k22:
-            l1 = -(k22 * errors[0] - k12 * errors[1]) / det
-            l2 = -(k11 * errors[1] - k12 * errors[0]) / det
-        if not (l1 >= 0.0 and l2 >= 0.0):  # not both: the deeper point alone
-            l1 = l2 = 0.0
-            if errors[1] < errors[0]:
-                l2 = -errors[1] / k22 if k22 > 0.0 else 0.0
-            else:
-                l1 = -errors[0] / k11 if k11 > 0.0 else 0.0
-    elif k11 > 0.0:
-        l1 = -errors[0] / k11
-    lam = l1 + l2
-    turn_a, turn_b = rn_a[0] * l1 + rn_a[1] * l2, rn_b[0] * l1 + rn_b[1] * l2
-    pose_a = nudged(pose_a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * turn_a)
-    pose_b = nudged(pose_b, im_b * lam * nx, im_b * lam * ny, ii_b * turn_b)
-    return pose_a, pose_b

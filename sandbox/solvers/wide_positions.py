@@ -21,12 +21,6 @@ body, its depth when the step began and the separation it may keep
 (:func:`allowed_separation`, fixed for the step).
 
 The passes ran about :data:`MEASURED` on the settled pyramid of base 40.
-
-The contacts a compiled pass visits one by one (those no colour takes, every disc contact, and
-every contact of a layered pass) are packed once a step into compact rows
-(:func:`fill_rest_row`, :func:`sandbox.penetration.pack_rest`) and pushed on the same poses
-(:func:`visit_rest`), with the record pass's arithmetic: rain of 5,000 discs, three passes over
-13,432 contacts, 557 us against 847 us on the records, bit for bit.
 """
 
 from __future__ import annotations
@@ -35,7 +29,7 @@ import numpy as np
 
 from sandbox.jit import njit
 from sandbox.math2d import pose_of, set_pose
-from sandbox.solvers.impulses import points_pushed, push_point, separation_of
+from sandbox.solvers.impulses import push_point
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.soft import excess_depth
 from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, groups, has_two_points, place
@@ -202,85 +196,6 @@ def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
             worst = min(worst, lanes[i + WORST])
             moved = max(moved, lanes[i + MOVED])
     return worst, moved != 0.0
-
-
-# a row of the compact records of the contacts the lanes leave (:func:`pack_rest`): both
-# bodies' inverse masses and the normal, then each point's fields as in the lanes
-R_IM_A, R_II_A, R_IM_B, R_II_B, R_NX, R_NY, R_POINTS = range(7)
-R_LAX, R_LAY, R_LBX, R_LBY, R_DEPTH, R_ALLOWED, R_POINT = range(
-    7
-)  # point j from R_POINTS + j R_POINT
-REST_ROW = R_POINTS + 2 * R_POINT
-
-
-@njit(inline="always")
-def fill_rest_row(row, c, mass, bounds) -> None:
-    """Contact ``c``'s compact row (:data:`REST_ROW`): ``mass`` = (1/m_a, 1/I_a, 1/m_b, 1/I_b)
-    as the pass pushes with, the normal, then each point's place on each body, depth when the
-    step began and allowed separation (:func:`allowed_separation`; ``bounds`` = (slop, push),
-    m)."""
-    slop, push = bounds
-    row[R_IM_A], row[R_II_A], row[R_IM_B], row[R_II_B] = mass
-    row[R_NX], row[R_NY] = c["normal"][0], c["normal"][1]
-    for j in range(c["count"]):
-        p, f = c["points"][j], R_POINTS + j * R_POINT
-        row[f + R_LAX], row[f + R_LAY] = p["local_a"][0], p["local_a"][1]
-        row[f + R_LBX], row[f + R_LBY] = p["local_b"][0], p["local_b"][1]
-        row[f + R_DEPTH] = p["anchor_depth"]
-        row[f + R_ALLOWED] = allowed_separation(c, p, slop, push)
-
-
-@njit(inline="always")
-def rest_point(row, j: int):
-    """Point ``j`` of a compact row: (local_a, local_b, depth0 (m), allowed separation (m))."""
-    f = R_POINTS + j * R_POINT
-    return (
-        (row[f + R_LAX], row[f + R_LAY]),
-        (row[f + R_LBX], row[f + R_LBY]),
-        row[f + R_DEPTH],
-        row[f + R_ALLOWED],
-    )
-
-
-@njit
-def visit_rest(rest, poses, beta: float):
-    """One pass over the contacts :func:`pack_rest` packed, one after another, on the poses of
-    :func:`take_poses`: as :func:`sandbox.penetration.position_impulses` on the records, the
-    same numbers bit for bit (a held contact's points together and entirely, the others point
-    by point, beta of the error). Returns (smallest separation seen (m), whether anything
-    moved)."""
-    rows, ends = rest
-    worst, moved = 0.0, False
-    for q in range(rows.shape[0]):
-        a, b, count, held, row = ends[q, 0], ends[q, 1], ends[q, 2], ends[q, 3], rows[q]
-        mass = row[R_IM_A], row[R_II_A], row[R_IM_B], row[R_II_B]
-        n = row[R_NX], row[R_NY]
-        pa = poses[a, 0], poses[a, 1], poses[a, 2], poses[a, 3], poses[a, 4]
-        pb = poses[b, 0], poses[b, 1], poses[b, 2], poses[b, 3], poses[b, 4]
-        if held:
-            e = [0.0, 0.0]
-            arms = [0.0] * 8
-            for j in range(count):
-                la, lb, depth, allowed = rest_point(row, j)
-                sep, arms[4 * j], arms[4 * j + 1], arms[4 * j + 2], arms[4 * j + 3] = separation_of(
-                    pa, pb, la, lb, n, depth
-                )
-                worst = min(worst, sep)
-                e[j] = min(sep - allowed, 0.0)
-            if e[0] < 0.0 or e[1] < 0.0:
-                pa, pb = points_pushed(pa, pb, count, n, mass, (e[0], e[1]), arms)
-                moved = True
-                poses[a, 0], poses[a, 1], poses[a, 2], poses[a, 3], poses[a, 4] = pa
-                poses[b, 0], poses[b, 1], poses[b, 2], poses[b, 3], poses[b, 4] = pb
-            continue
-        for j in range(count):
-            pa, pb, sep, pushed = push_point(pa, pb, mass, n, rest_point(row, j), beta)
-            worst = min(worst, sep)
-            if pushed:
-                moved = True
-                poses[a, 0], poses[a, 1], poses[a, 2], poses[a, 3], poses[a, 4] = pa
-                poses[b, 0], poses[b, 1], poses[b, 2], poses[b, 3], poses[b, 4] = pb
-    return worst, moved
 
 
 @njit
