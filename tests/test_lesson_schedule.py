@@ -89,3 +89,20 @@ def test_the_warmup_signals_once_every_family_but_the_soft_steps_is_ready(tmp_pa
     assert signal.exists()
     assert len(lines) == len(early) + len(LATE_FAMILIES)
     assert set(LATE_FAMILIES) <= set(LESSON_FAMILIES)
+
+
+def test_a_failure_of_the_runner_itself_reaches_the_caller(tmp_path):
+    # `sandbox lessons` turns a lesson's own failure into its outcome; anything the runner
+    # raises besides comes out where the result is read, instead of leaving it waiting
+    lessons = fake_lessons(tmp_path)
+
+    def run(lesson):
+        if lesson.stem == "03_big":
+            raise RuntimeError("the runner broke")
+        return lesson.stem
+
+    schedule = Schedule(lessons, run, jobs=2)
+    schedule.open(early=True, late=True)
+    with pytest.raises(RuntimeError, match="the runner broke"):
+        schedule.results["03_big"].result(timeout=10)
+    assert schedule.results["01_small"].result(timeout=10) == "01_small"

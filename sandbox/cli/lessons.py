@@ -298,7 +298,10 @@ class Schedule:
     def _work(self, gate: threading.Event) -> None:
         gate.wait()
         while (lesson := self._next()) is not None:
-            self.results[lesson.stem].set_result(self.run(lesson))
+            try:
+                self.results[lesson.stem].set_result(self.run(lesson))
+            except BaseException as err:  # reported where the result is read, not lost here
+                self.results[lesson.stem].set_exception(err)
 
 
 class LessonBar:
