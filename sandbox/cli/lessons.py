@@ -268,6 +268,7 @@ class Schedule:
 
     def __init__(self, lessons, run, jobs: int) -> None:
         self.pending = sorted(lessons, key=lambda lesson: -lesson.path.stat().st_size)
+        self.soft = {lesson.stem for lesson in lessons if lesson.needs_soft_kernels}  # read once
         self.results = {lesson.stem: Future() for lesson in lessons}
         self.run, self.lock = run, threading.Lock()
         self.early, self.late = threading.Event(), threading.Event()
@@ -291,7 +292,7 @@ class Schedule:
                     return None
                 late = self.late.is_set()
                 for i, lesson in enumerate(self.pending):
-                    if late or not lesson.needs_soft_kernels:
+                    if late or lesson.stem not in self.soft:
                         return self.pending.pop(i)
             self.late.wait()
 
