@@ -316,6 +316,8 @@ CONTEXT = np.dtype(
         ("position_passes", I8),  # position passes in the last step (sandbox.penetration)
         ("joints_together", np.bool_),  # the position stage solves the joints together (the
         # soft step's plan, set each step; the rigid steps sweep them)
+        ("block_solver", np.bool_),  # the prepare stage readies the block solver's matrices
+        # (set each step: the rigid steps have one, the soft step none)
         ("sweeps", I8),  # iterative solver: velocity sweeps in the last step (more at a large dt)
         ("sweep_direction", I8),  # sweep and prune: the direction PROXY["order"] is sorted
         # along (sandbox.broadphase.sap.DIRECTIONS), -1: none yet

@@ -182,15 +182,15 @@ def boxes_hold(shapes, vertices, bodies, reach, proxies) -> bool:
 
 
 @njit
-def prepare(contacts, k: int, kept, shapes, bodies, context, block: bool = True) -> None:
+def prepare(contacts, k: int, kept, shapes, bodies, context) -> None:
     """Stage 3: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
-    unless ``block`` is False: the soft step has none), then the warm-start impulses, from
-    ``kept`` = (the last step's contacts, the store of sleeping islands' contacts): the
-    contacts of islands that just woke from the store
+    when ``context["block_solver"]`` says so: the soft step has none), then the warm-start
+    impulses, from ``kept`` = (the last step's contacts, the store of sleeping islands'
+    contacts): the contacts of islands that just woke from the store
     (:func:`sandbox.sleeping_contacts.wake_contacts`), the others from the last step's."""
     ctx = context[0]
     previous, store = kept
-    prepare_contacts(contacts, k, shapes, bodies, 0.0, context, block)
+    prepare_contacts(contacts, k, shapes, bodies, 0.0, context, ctx["block_solver"])
     found = 0
     if ctx["warm_start"]:
         last = (previous, ctx["contact_count"][ctx["contact_set"]])
@@ -297,6 +297,7 @@ def fast_step(
     k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
     if k < 0:
         return k
+    ctx["block_solver"] = True
     prepare(contacts, k, (previous, sets[STORE]), shapes, bodies, context)
     gather_forces(bodies)
     integrate_velocities(model, context, ctx["dt"], work)
@@ -354,8 +355,9 @@ def begin_soft(contacts, k: int, kept, model, context) -> None:
     bodies, shapes, joints = model[0], model[1], model[3]
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
-    prepare(contacts, k, kept, shapes, bodies, context, False)
     ctx = context[0]
+    ctx["block_solver"] = False
+    prepare(contacts, k, kept, shapes, bodies, context)
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(contacts, k, bodies, context)
     prepare_soft(contacts, k, bodies, context)
@@ -484,6 +486,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         clock.lap("collide")
     if world.settings.solver == "soft":
         return staged_soft(world, (contacts, k, previous), a, clock)
+    ctx["block_solver"] = True
     prepare(contacts, k, (previous, sets[STORE]), a.shapes, a.bodies, a.context)
     clock.lap("prepare_contacts")
     gather_forces(a.bodies)

@@ -85,6 +85,55 @@ def test_the_counter_sees_the_slow_dispatch_this_test_was_written_for(slow_dispa
     assert slow_dispatches == ["time_of_impact"] * 2
 
 
+# In a fresh process: a compiled function of this script's, called first with a bool default
+# left out, then every family's staged steps, counting their slow dispatches.
+OMITTED_FIRST = """
+import sys
+from numba import njit
+from numba.core.dispatcher import Dispatcher
+from sandbox import warmup
+from sandbox.step import StageTimer
+
+@njit
+def flag(value={value}):
+    return value
+
+flag()
+calls = []
+original = Dispatcher._compile_for_args
+def counted(self, *args, **kwargs):
+    calls.append(self.py_func.__qualname__)
+    return original(self, *args, **kwargs)
+Dispatcher._compile_for_args = counted
+slow = set()
+for label, world, staged in warmup.worlds():
+    world.timer = StageTimer()
+    for _ in range(3):
+        world.step()
+    calls.clear()
+    for _ in range(3):
+        world.step()
+    slow.update(f"{{label}}: {{name}}" for name in calls)
+print(sorted(slow))
+"""
+
+
+@pytest.mark.parametrize("value", [False, True])
+def test_a_default_left_out_elsewhere_does_not_slow_the_steps(value):
+    # numba types an argument left out by a fingerprint of its default's type, not its value:
+    # the first bool default a process leaves out fixes what every later one is taken for. A
+    # step's call from Python that left out ``block=True`` (the prepare stage's, before the flag
+    # moved into the step's context) then missed its machine code on every step once any other
+    # call had left out a False, as a test of the wide position passes did (``colour``)
+    import subprocess
+    import sys
+
+    script = OMITTED_FIRST.format(value=value)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip().splitlines()[-1] == "[]"
+
+
 def test_the_warmup_compiles_what_lessons_call_from_python(slow_dispatches):
     """Lessons call some kernels from Python with their own argument types (the soft step
     lesson's joint passes on copies of a chain's records, the rotation lesson's kernels, the
