@@ -319,18 +319,23 @@ SOLVE_THEN_RELAX = (True, False)
 
 
 @njit
-def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work, plan) -> None:
+def soft_substeps(contacts, k: int, model, rot, context, ccd, work, plan) -> None:
     """The soft step's substeps (:mod:`sandbox.solvers.soft`; Box2D v3's ``b2SolverStep``):
     each integrates the velocities over h = dt / substeps, warm starts, solves the joints (as
     ``plan``, :func:`~sandbox.joints.solve.soft_joint_plan`, decided once for the step) and
     the contacts with the soft bias, moves the bodies, and relaxes (solves again without
-    bias)."""
+    bias). ``ccd``: None, or for a world with ``ccd`` bodies this step's (contacts, k,
+    joints), which each substep's moves are limited by (:func:`sandbox.toi.limit_ccd_motion`).
+
+    None, not a flag: numba leaves out a branch on ``is not None`` of an argument that is None
+    before it types the function, so a step without continuous collision never compiles it
+    (a constant False still had it compiled, 8.7 s of the soft step's 20 from an empty cache)."""
     bodies, shapes, vertices, joints, _ = model
     ctx = context[0]
     h = ctx["dt"] / ctx["substeps"]
     joint_soft = softness(ctx["joint_hertz"], ctx["joint_damping_ratio"], h)
     order = soft_order(contacts, k)
-    stopped = np.zeros(bodies.shape[0] if ccd else 0, dtype=np.bool_)
+    stopped = np.zeros(bodies.shape[0] if ccd is not None else 0, dtype=np.bool_)
     for _ in range(ctx["substeps"]):
         integrate_velocities(model, context, h, work)
         warm_start_joints_soft(joints, bodies)
@@ -342,8 +347,8 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd: bool, work, plan) 
             if not biased:
                 break
             plan_motion(bodies, h)
-            if ccd:  # no narrowphase between substeps: what it found before them
-                frac = limit_ccd_motion(bodies, shapes, vertices, context, (contacts, k, joints))
+            if ccd is not None:  # no narrowphase between substeps: what it found before them
+                frac = limit_ccd_motion(bodies, shapes, vertices, context, ccd)
                 hold_stopped(bodies, frac, stopped)
             move_bodies(bodies, rot, context)
 
@@ -380,7 +385,7 @@ def soft_step(
         return k
     begin_soft(contacts, k, (previous, sets[STORE]), model, context)
     plan = soft_joint_plan(joints, bodies, context)
-    soft_substeps(contacts, k, model, rot, context, False, work, plan)
+    soft_substeps(contacts, k, model, rot, context, None, work, plan)
     ctx["joints_together"] = plan[1]  # as the relax pass
     fix_positions(contacts, k, joints, bodies, rot, context)
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
@@ -522,7 +527,8 @@ def staged_soft(world, found, a, clock) -> int:
     begin_soft(contacts, k, (previous, a.buffers.sets[STORE]), model, a.context)
     clock.lap("prepare_contacts")
     plan = soft_joint_plan(a.joints, a.bodies, a.context)
-    soft_substeps(contacts, k, model, a.rot, a.context, world.has_ccd, a.work, plan)
+    ccd = (contacts, k, a.joints) if world.has_ccd else None
+    soft_substeps(contacts, k, model, a.rot, a.context, ccd, a.work, plan)
     position_stage(world, a, (contacts, k), plan[1])
     clock.lap("solve")
     restitution(contacts, k, a.bodies, ctx["restitution_threshold"])

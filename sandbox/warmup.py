@@ -144,6 +144,10 @@ def every_world():
         Circle(0.05)
     )
     yield "continuous collision", fast, False
+    soft_fast = sample_world(solver="soft")
+    soft_fast.add_body(Body("bullet", position=(-8.0, 2.0), velocity=(400.0, 0.0), ccd=True))
+    soft_fast.body("bullet").add_shape(Circle(0.05))
+    yield "soft solver and continuous collision", soft_fast, False
     for integrator in ("semi_implicit_euler", "verlet"):
         lone = World(integrator=integrator)
         lone.add_body(Body("ball")).add_shape(Circle(0.5))
