@@ -288,6 +288,8 @@ CONTEXT = np.dtype(
         ("penetration", I8),  # index into sandbox.settings.PENETRATIONS
         ("robust_positions", np.bool_),  # position passes from the ground up (shock order)
         ("hold_heavier", np.bool_),  # ... also in layers when a body rests on a much lighter one
+        ("block_solver", np.bool_),  # the prepare stage readies the block solver's matrices
+        # (the rigid solvers have one, the soft step none)
         ("deep_overlap", F8),  # m: overlap at a step's start beyond which the push is bounded
         ("slop", F8),
         ("position_tolerance", F8),  # m: the position passes stop once no overlap is deeper
@@ -316,8 +318,6 @@ CONTEXT = np.dtype(
         ("position_passes", I8),  # position passes in the last step (sandbox.penetration)
         ("joints_together", np.bool_),  # the position stage solves the joints together (the
         # soft step's plan, set each step; the rigid steps sweep them)
-        ("block_solver", np.bool_),  # the prepare stage readies the block solver's matrices
-        # (set each step: the rigid steps have one, the soft step none)
         ("sweeps", I8),  # iterative solver: velocity sweeps in the last step (more at a large dt)
         ("sweep_direction", I8),  # sweep and prune: the direction PROXY["order"] is sorted
         # along (sandbox.broadphase.sap.DIRECTIONS), -1: none yet

@@ -297,7 +297,6 @@ def fast_step(
     k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
     if k < 0:
         return k
-    ctx["block_solver"] = True
     prepare(contacts, k, (previous, sets[STORE]), shapes, bodies, context)
     gather_forces(bodies)
     integrate_velocities(model, context, ctx["dt"], work)
@@ -360,9 +359,8 @@ def begin_soft(contacts, k: int, kept, model, context) -> None:
     bodies, shapes, joints = model[0], model[1], model[3]
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
-    ctx = context[0]
-    ctx["block_solver"] = False
     prepare(contacts, k, kept, shapes, bodies, context)
+    ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(contacts, k, bodies, context)
     prepare_soft(contacts, k, bodies, context)
@@ -491,7 +489,6 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         clock.lap("collide")
     if world.settings.solver == "soft":
         return staged_soft(world, (contacts, k, previous), a, clock)
-    ctx["block_solver"] = True
     prepare(contacts, k, (previous, sets[STORE]), a.shapes, a.bodies, a.context)
     clock.lap("prepare_contacts")
     gather_forces(a.bodies)

@@ -88,6 +88,13 @@ def with_forces(w: World) -> World:
     return w
 
 
+def with_bullet(w: World) -> World:
+    """A 5 cm ball at 400 m/s with continuous collision (``ccd``)."""
+    w.add_body(Body("bullet", position=(-8.0, 2.0), velocity=(400.0, 0.0), ccd=True))
+    w.body("bullet").add_shape(Circle(0.05))
+    return w
+
+
 def step(w: World, steps: int = 4, staged: bool = False) -> None:
     if staged:
         w.timer = StageTimer()
@@ -139,16 +146,10 @@ def every_world():
         yield f"{integrator} and forces", with_forces(sample_world(integrator=integrator)), False
     yield "rk4 and forces, staged", with_forces(sample_world(integrator="rk4")), True
     yield "soft step with forces", with_forces(sample_world(solver="soft")), False
-    fast = sample_world()
+    fast = with_bullet(sample_world())
     fast.body("disc").velocity = (0.0, -300.0)
-    fast.add_body(Body("bullet", position=(-8.0, 2.0), velocity=(400.0, 0.0), ccd=True)).add_shape(
-        Circle(0.05)
-    )
     yield "continuous collision", fast, False
-    soft_fast = sample_world(solver="soft")
-    soft_fast.add_body(Body("bullet", position=(-8.0, 2.0), velocity=(400.0, 0.0), ccd=True))
-    soft_fast.body("bullet").add_shape(Circle(0.05))
-    yield "soft solver and continuous collision", soft_fast, False
+    yield "soft solver and continuous collision", with_bullet(sample_world(solver="soft")), False
     for integrator in ("semi_implicit_euler", "verlet"):
         lone = World(integrator=integrator)
         lone.add_body(Body("ball")).add_shape(Circle(0.5))

@@ -4,8 +4,8 @@ numba calls a compiled function from Python through its dispatcher: the argument
 matched against the compiled signatures in C, in about a microsecond. A call that matches none
 of them goes through ``_compile_for_args`` in Python, which types each record array afresh
 (about 0.3 ms apiece). The position stage of the staged step left out the last argument of
-``fix_positions`` (a default, since moved into the step's context); that call never matched the machine code compiled for it and
-took the slow path every step: every staged step (pairwise and shock solvers, the other
+``fix_positions`` (a default, since moved into the step's context); that call never matched
+the machine code compiled for it and took the slow path every step: every staged step (pairwise and shock solvers, the other
 broadphases, continuous collision, a stage timer) cost 1.4 ms more, ten times a whole step
 of 100 circles. Passing every argument matches at once.
 
@@ -123,7 +123,7 @@ def test_a_default_left_out_elsewhere_does_not_slow_the_steps(value):
     # numba types an argument left out by a fingerprint of its default's type, not its value:
     # the first bool default a process leaves out fixes what every later one is taken for. A
     # step's call from Python that left out ``block=True`` (the prepare stage's, before the flag
-    # moved into the step's context) then missed its machine code on every step once any other
+    # moved into the context) then missed its machine code on every step once any other
     # call had left out a False, as a test of the wide position passes did (``colour``)
     import subprocess
     import sys
