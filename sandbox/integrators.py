@@ -152,7 +152,7 @@ def derivative_ahead(model, gravity, fields: bool, state, k1, out) -> None:
     False: no generator, no spring) a = g + F / m and alpha = tau / I are the same at every
     state, so they are k1's (the very same numbers); only (v, w) comes from ``state``."""
     if fields:
-        accelerations(model, gravity, state, out, True)
+        accelerations(model, gravity, state, out, fields)
         return
     for i in range(state.shape[0]):
         d, y = out[i], state[i]
@@ -182,7 +182,7 @@ def look_ahead(model, gravity, fields: bool, start, k1, y1, out) -> None:
     y, d, h = start
     if fields:
         advanced(y, d, h, y1)
-        accelerations(model, gravity, y1, out, True)
+        accelerations(model, gravity, y1, out, fields)
         return
     for i in range(y.shape[0]):
         for k in range(2):

@@ -14,13 +14,22 @@ from __future__ import annotations
 import os
 import sys
 
+import numpy as np
+
 from sandbox.compile_cache import CACHE_FOLDER, COMPILE_LOG, take_cache_note
 
 JIT_ENABLED: bool = os.environ.get("SANDBOX_JIT", "1") != "0"
+# flags for a compiled call to pass as constants. numba compiles a function once for each
+# literal True or False it is called with, and once more for a flag known only at run time;
+# it takes numpy's bools for the latter, so a call passing ON or OFF shares that version with
+# the calls passing a variable (each literal version cost 0.3 to 0.6 s from an empty cache)
+ON, OFF = np.bool_(True), np.bool_(False)
 
 __all__ = [
     "CACHE_FOLDER",
     "JIT_ENABLED",
+    "OFF",
+    "ON",
     "bound",
     "entry",
     "literally",
@@ -47,8 +56,9 @@ if JIT_ENABLED:
         to report (``sandbox lessons``)."""
 
         # kernels compiled with each one-call step from an empty cache (the bar's length;
-        # measured: the same for the bundled pyramid and for a world of every shape and joint)
-        STEP_KERNELS = {"fast_step": 237, "soft_step": 305}
+        # measured by `python benchmarks/bench_first_run.py --kernels` on the bundled pyramid;
+        # a world of every shape and joint compiles as many)
+        STEP_KERNELS = {"fast_step": 233, "soft_step": 229}
 
         def __init__(self) -> None:
             self.depth = 0

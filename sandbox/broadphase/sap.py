@@ -47,7 +47,7 @@ import math
 import numpy as np
 
 from sandbox.broadphase.aabb import put_pair, sort_pairs
-from sandbox.jit import literally, njit
+from sandbox.jit import ON, literally, njit
 from sandbox.records import PROXY, SWEEP_ENTRY
 from sandbox.sorting import argsort, sort_in_place
 
@@ -331,7 +331,7 @@ def sweep(proxies, kept: int, recount: int, buf):
     kept order up to date, copy the boxes into it band by band and sweep. Returns
     ``(direction, recount, k pairs, pair_tests)``; pairs in ``buf`` as far as they fit (as
     :func:`sap_kernel`)."""
-    d, recount = choose_direction(proxies, kept, recount)
+    d, recount = choose_direction(proxies, kept, recount, ON)  # in bands
     update_order(proxies, d, kept)
     bands = gather(proxies, d, band_layout(proxies, d))
     none = np.empty((0, 2), dtype=np.int64)

@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from sandbox.jit import JIT_ENABLED, njit
+from sandbox.jit import JIT_ENABLED, OFF, ON, njit
 from sandbox.joints.solve import solve_joint_velocities
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
 from sandbox.solvers import wide_single as single
@@ -218,7 +218,7 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     one by one in :func:`visit` order. The same visits as :func:`sweep`'s, in another order."""
     colours = np.empty(k, dtype=np.int64)
     ends = np.empty((4, k), dtype=np.int64)
-    count = colour(contacts, k, bodies, colours, False, True, ends)
+    count = colour(contacts, k, bodies, colours, OFF, ON, ends)
     empty = len(bodies)  # the row of velocities that empty lanes read and write
     # two-point contacts in two groups a colour: with the block solver (2 c), without (2 c + 1)
     if has_two_points(contacts, k):
@@ -237,15 +237,15 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     half = (len(alone) + 1) // 2
     if not JIT_ENABLED:  # uncompiled, lanes buy nothing: the same visits one by one, same numbers
         for _ in range(n):
-            solve_joint_velocities(joints, bodies, True)
+            solve_joint_velocities(joints, bodies, ON)
             for c in range(count):  # colour by colour: two points (both groups), then one
                 for ids, first, end in ((owners, starts[2 * c], starts[2 * c + 2]),
                                         (owners1, starts1[c], starts1[c + 1])):  # fmt: skip
                     for q in range(first * LANES, end * LANES):
                         if ids[0, q] >= 0:
-                            visit_contact(contacts[ids[0, q]], bodies, True)
+                            visit_contact(contacts[ids[0, q]], bodies, ON)
             for q in range(len(alone)):
-                visit_contact(contacts[alone[visit(q, half)]], bodies, True)
+                visit_contact(contacts[alone[visit(q, half)]], bodies, ON)
         return
     pack(contacts, lanes, owners, blocks)
     lanes1 = np.empty(blocks1 * single.BLOCK)
@@ -255,7 +255,7 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     for _ in range(n):
         if len(joints) > 0:  # joints read and write the bodies' records
             put_velocities(velocities, bodies)
-            solve_joint_velocities(joints, bodies, True)
+            solve_joint_velocities(joints, bodies, ON)
             take_velocities(bodies, velocities)
         for c in range(count):
             visit_colour(lanes, owners, starts[2 * c], starts[2 * c + 1], velocities, True)
@@ -273,7 +273,7 @@ def visit_rows(c, velocities) -> None:
     """:func:`visit_points` (accumulated) with the bodies' velocities in rows of
     ``velocities`` (vx, vy, w)."""
     v, w = velocities[c["a"]], velocities[c["b"]]
-    va, vb = visit_points(c, (v[0], v[1], v[2]), (w[0], w[1], w[2]), True)
+    va, vb = visit_points(c, (v[0], v[1], v[2]), (w[0], w[1], w[2]), ON)
     v[0], v[1], v[2] = va
     w[0], w[1], w[2] = vb
 

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox.jit import njit
+from sandbox.jit import OFF, ON, njit
 from sandbox.math2d import pose_of, set_pose
 from sandbox.solvers.impulses import push_point
 from sandbox.solvers.iterative import visit
@@ -77,7 +77,7 @@ def plan(contacts, k: int, bodies, bounds, wide: bool):
         return order, np.empty(0), owners, np.zeros(1, dtype=np.int64), np.arange(k)
     colours = np.empty(k, dtype=np.int64)
     ends = np.empty((4, k), dtype=np.int64)
-    count = colour(contacts, k, bodies, colours, True, False, ends)
+    count = colour(contacts, k, bodies, colours, ON, OFF, ends)
     blocks = (k + LANES - 1) // LANES + count
     owners = np.empty((3, blocks * LANES), dtype=np.int64)
     starts = np.empty(count + 1, dtype=np.int64)
