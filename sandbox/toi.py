@@ -301,7 +301,9 @@ def swept_pairs(bodies, shapes):
                 continue
             if n == out.shape[0]:
                 grown = np.empty((2 * n, 2), dtype=np.int64)
-                grown[:n] = out
+                # a loop: a slice copy compiles numba's message for mismatched shapes (2.5 s)
+                for r in range(n):
+                    grown[r, 0], grown[r, 1] = out[r, 0], out[r, 1]
                 out = grown
             out[n, 0], out[n, 1] = min(i, j), max(i, j)
             n += 1
