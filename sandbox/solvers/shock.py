@@ -60,7 +60,9 @@ def contact_layers(contacts, k: int, bodies, gap: float = np.inf):
         if touching(contacts[i], gap):
             degree[contacts[i]["a"] + 1] += 1
             degree[contacts[i]["b"] + 1] += 1
-    start = np.cumsum(degree)  # neighbours of body u: neighbour[start[u]:start[u + 1]]
+    start = degree  # summed in place (np.cumsum compiled 0.3 s more from an empty cache):
+    for u in range(n):  # the neighbours of body u are neighbour[start[u]:start[u + 1]]
+        start[u + 1] += start[u]
     fill = start[:-1].copy()
     neighbour = np.empty(start[n], dtype=np.int64)
     for i in range(k):
