@@ -1,6 +1,6 @@
 """The first run on a machine where nothing is compiled yet: how long a student waits.
 
-    python benchmarks/bench_first_run.py [--rounds R] [--background]
+    python benchmarks/bench_first_run.py [--rounds R] [--background] [--kernels]
 
 Each case runs ``sandbox simulate SCENE --steps N --trace t.csv`` in a fresh process with an
 empty compile cache of its own (``NUMBA_CACHE_DIR`` in a temporary folder) and times it on the
@@ -9,7 +9,9 @@ compiles first (``sandbox/cli/first_run.py``). The table gives the median over t
 path taken and the command's first note. By default the background warmup a cold run starts
 is turned off (``SANDBOX_WARMUP=off``), so each case times the command alone;
 ``--background`` lets it start, as on a student's machine (it then competes for the cores), and
-also times how long it takes until the next run is compiled.
+also times how long it takes until the next run is compiled. ``--kernels`` instead counts the
+kernels each one-call step compiles from an empty cache: the lengths of the compile notice's
+progress bar (``sandbox.jit.CompileNotice.STEP_KERNELS``).
 
 The issue's bounds (issue "First run in seconds"): drop's 240 steps in at most 5 s, the
 pyramid's 120 steps in at most 8 s.
@@ -64,13 +66,61 @@ def run_cold(scene: str, steps: int, background: bool) -> tuple[float, str, floa
         return seconds, (notes[0] if notes else ""), warmed
 
 
+KERNEL_COUNT = """
+import sys
+from numba.core import event
+import sandbox
+
+STEPS = ("fast_step", "soft_step")
+stack, count = [], [0]
+
+class Count(event.Listener):
+    def on_start(self, ev):
+        stack.append(ev.data["dispatcher"].py_func.__name__)
+    def on_end(self, ev):
+        name = stack.pop()
+        if (stack[0] if stack else name) in STEPS:  # compiled with the step
+            count[0] += 1
+
+event.register("numba:compile", Count())
+world = sandbox.load_scene(sys.argv[1])
+world.settings.solver = sys.argv[2]
+world.step()
+print(count[0])
+"""
+
+
+def count_kernels(solver: str) -> int:
+    """Kernels the one-call step of ``solver`` compiles from an empty cache (the bundled
+    pyramid; a world of every shape and joint gave the same count)."""
+    with tempfile.TemporaryDirectory() as folder:
+        env = {k: v for k, v in os.environ.items() if k not in ("SANDBOX_JIT", "PYTHONPATH")}
+        env.update(NUMBA_CACHE_DIR=folder, SANDBOX_WARMUP="off")
+        scene = str(Path(__file__).resolve().parents[1] / "scenes" / "pyramid.json")
+        done = subprocess.run(
+            [sys.executable, "-c", KERNEL_COUNT, scene, solver],
+            env=env,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+        return int(done.stdout.split()[-1])
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=3, help="cold runs per case (median)")
     parser.add_argument(
         "--background", action="store_true", help="let the background warmup run, and time it"
     )
+    parser.add_argument(
+        "--kernels", action="store_true", help="count the kernels each one-call step compiles"
+    )
     args = parser.parse_args()
+    if args.kernels:
+        for name, solver in (("fast_step", "iterative"), ("soft_step", "soft")):
+            print(f"{name}: {count_kernels(solver)} kernels")
+        return
     print(
         "| scene | steps | first run (s), median | path | runs (s) | compiled for the next run after (s) |"
     )

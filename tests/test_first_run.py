@@ -127,8 +127,8 @@ def test_compile_notice_on_a_terminal(monkeypatch):
 
 
 def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
-    # a one-call step's compile: a bar of the kernels it compiles from an empty cache (237 for
-    # the iterative solver's, 305 for the soft step's); anything else: a count, no length
+    # a one-call step's compile: a bar of the kernels it compiles from an empty cache (233 for
+    # the iterative solver's, 229 for the soft step's); anything else: a count, no length
     from types import SimpleNamespace
 
     from sandbox import jit
@@ -143,8 +143,8 @@ def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
 
     monkeypatch.setattr(jit.sys, "stderr", Terminal())
     for name, total in (
-        ("fast_step", 237),
-        ("soft_step", 305),
+        ("fast_step", 233),
+        ("soft_step", 229),
         ("place_bodies", None),
         (None, None),
     ):
