@@ -402,7 +402,7 @@ def free_step(bodies, rot, shapes, vertices, joints, generators, context, work) 
     move_bodies(bodies, rot, context)
     context[0]["contact_points"] = 0
     clear_forces(bodies)
-    return store_impulses(0, bodies, context)
+    return store_impulses(np.int64(0), bodies, context)  # no contacts (np.int64: see jit.ON)
 
 
 # --- the step, stage by stage from Python ------------------------------------------------------
