@@ -61,3 +61,32 @@ def sort_in_place(values) -> None:
     order, before_sorting = argsort(values), values.copy()
     for i in range(values.shape[0]):  # a loop: numba's fancy indexing takes seconds to compile
         values[i] = before_sorting[order[i]]
+
+
+@njit
+def select(x: np.ndarray, n: int, k: int) -> float:
+    """The ``k``-th smallest of ``x[:n]`` (quickselect, median-of-three pivot; reorders ``x``)."""
+    lo = 0
+    hi = n - 1
+    while lo < hi:
+        mid = (lo + hi) // 2
+        a, b, c = x[lo], x[mid], x[hi]
+        pivot = max(min(a, b), min(max(a, b), c))
+        i = lo
+        j = hi
+        while i <= j:
+            while x[i] < pivot:
+                i += 1
+            while x[j] > pivot:
+                j -= 1
+            if i <= j:
+                x[i], x[j] = x[j], x[i]
+                i += 1
+                j -= 1
+        if k <= j:
+            hi = j
+        elif k >= i:
+            lo = i
+        else:
+            break
+    return x[k]

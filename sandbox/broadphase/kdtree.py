@@ -22,39 +22,10 @@ import numpy as np
 
 from sandbox.broadphase.aabb import check_tree_options, collect, overlap, put_pair, skip_pair
 from sandbox.jit import njit
-from sandbox.sorting import argsort
+from sandbox.sorting import argsort, select
 
 CAPACITY = 8
 MAX_DEPTH = 40
-
-
-@njit
-def select(x: np.ndarray, n: int, k: int) -> float:
-    """The ``k``-th smallest of ``x[:n]`` (quickselect, median-of-three pivot; reorders ``x``)."""
-    lo = 0
-    hi = n - 1
-    while lo < hi:
-        mid = (lo + hi) // 2
-        a, b, c = x[lo], x[mid], x[hi]
-        pivot = max(min(a, b), min(max(a, b), c))
-        i = lo
-        j = hi
-        while i <= j:
-            while x[i] < pivot:
-                i += 1
-            while x[j] > pivot:
-                j -= 1
-            if i <= j:
-                x[i], x[j] = x[j], x[i]
-                i += 1
-                j -= 1
-        if k <= j:
-            hi = j
-        elif k >= i:
-            lo = i
-        else:
-            break
-    return x[k]
 
 
 @njit
