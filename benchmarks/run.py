@@ -334,7 +334,7 @@ def write_plot(rows: list[dict], path: Path, title: str) -> None:
                 ys.append(float(cell))
         values += ys
         bars = ax.bar(xs, ys, width=width, color=f"C{j}", label=f"{mine} / {peer}")
-        ax.bar_label(bars, labels=[f"{v:.2g}" for v in ys], fontsize=7)
+        ax.bar_label(bars, labels=[f"{v:.2f}" for v in ys], fontsize=7)  # 1.04, not 1
     if values and max(values) / min(values) > 8:  # log scale when the ratios span a wide range
         ax.set_yscale("log")
     ax.axhline(1.0, color="k", linewidth=1.0, label="as fast as the peer")
