@@ -5,9 +5,9 @@ matched against the compiled signatures in C, in about a microsecond. A call tha
 of them goes through ``_compile_for_args`` in Python, which types each record array afresh
 (about 0.3 ms apiece). The position stage of the staged step left out the last argument of
 ``fix_positions`` (a default, since moved into the step's context); that call never matched
-the machine code compiled for it and took the slow path every step: every staged step (pairwise and shock solvers, the other
-broadphases, continuous collision, a stage timer) cost 1.4 ms more, ten times a whole step
-of 100 circles. Passing every argument matches at once.
+the machine code compiled for it and took the slow path every step: every staged step
+(pairwise and shock solvers, the other broadphases, continuous collision, a stage timer) cost
+1.4 ms more, ten times a whole step of 100 circles. Passing every argument matches at once.
 
 The test counts the slow dispatches of later steps of every family the warm-up compiles, on
 both paths (one call, stages one by one), and of a world that sleeps: there must be none. It
