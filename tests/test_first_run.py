@@ -127,7 +127,7 @@ def test_compile_notice_on_a_terminal(monkeypatch):
 
 
 def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
-    # a one-call step's compile: a bar of the kernels it compiles from an empty cache (233 for
+    # a one-call step's compile: a bar of the kernels it compiles from an empty cache (232 for
     # the iterative solver's, 229 for the soft step's); anything else: a count, no length
     from types import SimpleNamespace
 
@@ -143,7 +143,7 @@ def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
 
     monkeypatch.setattr(jit.sys, "stderr", Terminal())
     for name, total in (
-        ("fast_step", 233),
+        ("fast_step", 232),
         ("soft_step", 229),
         ("place_bodies", None),
         (None, None),

@@ -258,8 +258,8 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
             solve_joint_velocities(joints, bodies, ON)
             take_velocities(bodies, velocities)
         for c in range(count):
-            visit_colour(lanes, owners, starts[2 * c], starts[2 * c + 1], velocities, True)
-            visit_colour(lanes, owners, starts[2 * c + 1], starts[2 * c + 2], velocities, False)
+            visit_colour(lanes, owners, starts[2 * c], starts[2 * c + 1], velocities, ON)
+            visit_colour(lanes, owners, starts[2 * c + 1], starts[2 * c + 2], velocities, OFF)
             single.visit_colour(lanes1, owners1, starts1[c], starts1[c + 1], velocities)
         for q in range(len(alone)):
             visit_rows(contacts[alone[visit(q, half)]], velocities)
