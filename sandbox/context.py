@@ -54,6 +54,7 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     ctx["deep_overlap"] = deep if s.robust_positions and s.position_correction else np.inf
     ctx["slop"], ctx["baumgarte"] = s.slop, s.baumgarte
     ctx["position_tolerance"] = s.position_tolerance
+    ctx["position_stall"] = s.position_stall
     ctx["restitution_threshold"] = s.restitution_threshold
     # at least as far as gravity moves a body from rest in one step (|g| dt^2), so a resting
     # stack keeps its contacts even at a large dt

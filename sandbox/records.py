@@ -293,6 +293,7 @@ CONTEXT = np.dtype(
         ("deep_overlap", F8),  # m: overlap at a step's start beyond which the push is bounded
         ("slop", F8),
         ("position_tolerance", F8),  # m: the position passes stop once no overlap is deeper
+        ("position_stall", F8),  # ... or once a pass takes out less than this fraction of it
         ("baumgarte", F8),
         ("restitution_threshold", F8),
         ("contact_margin", F8),  # the setting, or |g| dt^2 when larger (m)

@@ -132,6 +132,15 @@ class Settings:
         Range(0.0, 1.0, "m"),
         ge=0.0,
     )
+    position_stall: float = _setting(
+        0.005,
+        "number",
+        "the position passes also stop once a pass takes out less than this fraction of the "
+        "overlap the pass before met: a pile its own load presses together, where the passes "
+        "only push against each other (0: only position_tolerance stops them)",
+        Range(0.0, 1.0),
+        ge=0.0,
+    )
     slop: float = _setting(
         0.005,
         "number",

@@ -99,7 +99,11 @@ def test_empty_contact_list():
     )
     contacts = np.zeros(0, dtype=CONTACT)
     layering, lanes = position_order(contacts, 0, bodies, False, GAP, BOUNDS, True)
-    assert wide_position_impulses(contacts, bodies, BETA, BOUNDS, layering, lanes) == (0.0, False)
+    assert wide_position_impulses(contacts, bodies, BETA, BOUNDS, layering, lanes) == (
+        0.0,
+        False,
+        0.0,
+    )
 
 
 def test_the_lane_loop_compiles_to_vector_instructions():

@@ -8,6 +8,8 @@ ones over eight contacts at a time (:mod:`sandbox.solvers.wide`,
 
 from __future__ import annotations
 
+import numpy as np
+
 from sandbox.jit import njit
 from sandbox.math2d import cross, effective_mass, nudged, push_along, rotate, speed_along
 
@@ -115,3 +117,12 @@ def push_point(pose_a, pose_b, mass, n, point, beta: float):
     pose_a = nudged(pose_a, -im_a * lam * nx, -im_a * lam * ny, -ii_a * rn_a * lam)
     pose_b = nudged(pose_b, im_b * lam * nx, im_b * lam * ny, ii_b * rn_b * lam)
     return pose_a, pose_b, sep, pushed
+
+
+@njit(inline="always")
+def overlap_left(sep: float, allowed: float) -> float:
+    """How far a point overlaps beyond the separation it may keep (``allowed``, m), in whole
+    micrometres: a float that holds an integer, so that a pass's sum of them is exact and the
+    same in any order, and the passes over lanes and over records stop alike (the stall test
+    of :func:`sandbox.penetration.fix_positions`)."""
+    return np.floor(max(allowed - sep, 0.0) * 1e6)

@@ -16,7 +16,8 @@ Each point's push is :func:`sandbox.solvers.impulses.push_point`, the same funct
 record pass calls. Layout, as the velocity lanes': lane ``l`` of field ``F`` of the block
 starting at ``i`` is ``lanes[i + F + l]``. A lane holds its bodies' inverse masses, the
 normal, both bodies' poses while the colour is visited (:func:`sandbox.math2d.pose_of`), the
-smallest separation it saw and whether it pushed, then for each point its place on each
+smallest separation it saw, whether it pushed and the overlap it met
+(:func:`~sandbox.solvers.impulses.overlap_left`), then for each point its place on each
 body, its depth when the step began and the separation it may keep
 (:func:`allowed_separation`, fixed for the step).
 
@@ -29,15 +30,15 @@ import numpy as np
 
 from sandbox.jit import OFF, ON, njit
 from sandbox.math2d import pose_of, set_pose
-from sandbox.solvers.impulses import push_point
+from sandbox.solvers.impulses import overlap_left, push_point
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.soft import excess_depth
 from sandbox.solvers.wide import COLOURS, LANES, _offsets, colour, groups, has_two_points, place
 
 MEASURED = "one pass of 2,369 contacts: 23 us eight at a time against 70 us one by one"
 
-IM_A, II_A, IM_B, II_B, NX, NY, *_rest = _offsets(19)
-AX, AY, AC, AS, ATURN, BX, BY, BC, BS, BTURN, WORST, MOVED, P0 = _rest  # poses: pose_of
+IM_A, II_A, IM_B, II_B, NX, NY, *_rest = _offsets(20)
+AX, AY, AC, AS, ATURN, BX, BY, BC, BS, BTURN, WORST, MOVED, OVERLAP, P0 = _rest  # pose_of
 POINT_FIELDS = LAX, LAY, LBX, LBY, DEPTH, ALLOWED = _offsets(6)  # from P0 or P1 on
 P1 = P0 + np.uint64(len(POINT_FIELDS) * LANES)
 FIELDS = int(P1) // LANES + len(POINT_FIELDS)
@@ -162,6 +163,8 @@ def visit_block(lanes, start, beta: float) -> None:
         pa, pb, sep1, pushed1 = push_point(pa, pb, mass, n, point, beta)
         lanes[i + WORST] = min(lanes[i + WORST], min(sep0, sep1))
         lanes[i + MOVED] = max(lanes[i + MOVED], 1.0 if pushed0 | pushed1 else 0.0)
+        met = overlap_left(sep0, lanes[b0 + ALLOWED]) + overlap_left(sep1, lanes[b1 + ALLOWED])
+        lanes[i + OVERLAP] = lanes[i + OVERLAP] + met
         lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS], lanes[i + ATURN] = pa
         lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS], lanes[i + BTURN] = pb
 
@@ -172,7 +175,7 @@ def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
     bodies' poses (``poses``, a row (x, y, cos, sin, turn) per body, :func:`take_poses`) into
     all the colour's lanes, the pushes, the poses back (as
     :func:`sandbox.solvers.wide.visit_colour`). Returns (smallest separation seen (m),
-    whether anything moved)."""
+    whether anything moved, the overlap met (um, exact: a sum of integers))."""
     for block in range(first, end):
         start = np.uint64(block) * np.uint64(BLOCK)
         for lane in range(LANES):
@@ -181,10 +184,10 @@ def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
             lanes[i + AX], lanes[i + AY], lanes[i + AC], lanes[i + AS] = v[0], v[1], v[2], v[3]
             lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS] = w[0], w[1], w[2], w[3]
             lanes[i + ATURN], lanes[i + BTURN] = v[4], w[4]
-            lanes[i + WORST], lanes[i + MOVED] = 0.0, 0.0
+            lanes[i + WORST], lanes[i + MOVED], lanes[i + OVERLAP] = 0.0, 0.0, 0.0
     for block in range(first, end):
         visit_block(lanes, np.uint64(block) * np.uint64(BLOCK), beta)
-    worst, moved = 0.0, 0.0
+    worst, moved, overlap = 0.0, 0.0, 0.0
     for block in range(first, end):
         start = np.uint64(block) * np.uint64(BLOCK)
         for lane in range(LANES):
@@ -195,7 +198,8 @@ def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
             v[4], w[4] = lanes[i + ATURN], lanes[i + BTURN]
             worst = min(worst, lanes[i + WORST])
             moved = max(moved, lanes[i + MOVED])
-    return worst, moved != 0.0
+            overlap += lanes[i + OVERLAP]
+    return worst, moved != 0.0, overlap
 
 
 @njit
