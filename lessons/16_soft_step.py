@@ -134,9 +134,11 @@ built: dict[str, World] = {}  # scene name -> its world as built, never stepped
 
 def load(spec: dict, solver: str, **settings) -> World:
     """The scene in this engine with ``solver`` and some settings changed: a copy of the world
-    built once per scene (building 820 boxes takes a while, copying them a few ms)."""
+    built once per scene (building 820 boxes takes a while, copying them a few ms), with its
+    shapes' records built too, so that no copy builds them again."""
     if spec["name"] not in built:
         built[spec["name"]] = sandbox.load_scene(copy.deepcopy(spec))
+        built[spec["name"]].geometry()
     world = copy.deepcopy(built[spec["name"]])
     world.settings.solver = solver
     for key, value in settings.items():
