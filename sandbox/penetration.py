@@ -164,7 +164,7 @@ def holds(c, bodies, layer) -> bool:
 
 
 @njit
-def push_apart(contacts, k: int, bodies, weighted: bool, bounds, layering) -> float:
+def push_apart(contacts, k: int, bodies, weighted: bool, bounds, layering) -> tuple[float, float]:
     """Options 1 and 2, one pass: translate each pair apart by p = deepest overlap beyond the
     allowed separation. ``bounds`` = (slop, push) (m); ``layering`` = (order, layer) from
     :func:`position_order`. Returns (the smallest separation seen (m), the overlap beyond
@@ -237,8 +237,9 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
     """Option 3, one pass (non-linear Gauss-Seidel). Within a layer, point by point, beta of
     each point's error, at most ``MAX_CORRECTION``; between two layers (the lower body held)
     the manifold's points together and entirely (nothing pushes back: :func:`push_points`).
-    Returns (smallest separation seen (m), whether anything moved, the overlap beyond what each
-    point may keep, summed as the pass met it (um, :func:`~sandbox.solvers.impulses.overlap_left`))."""
+    Returns (smallest separation seen (m), whether anything moved, the overlap beyond what
+    each point may keep, summed as the pass met it (um,
+    :func:`~sandbox.solvers.impulses.overlap_left`))."""
     slop, push = bounds
     order, layer = layering
     worst = overlap = 0.0
