@@ -334,11 +334,13 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     pile its own load presses together, where the passes push against each other: the rain
     of 5,000 discs, 0.2 % a pass; a spawned pile or a sunk ball, 1.3 % to 40 %); then
     each body's orientation turned by what the passes turned. ``context["position_passes"]``
-    gets how many passes ran. Nothing at all when ``settings.position_correction`` is off.
+    gets how many passes ran, ``context["position_progress"]`` the fraction of the overlap
+    the pass before the last took out (NaN after one pass, or when it met none). Nothing at all when ``settings.position_correction`` is off.
     Returns the smallest separation the last contact pass saw (m, < 0 overlapping)."""
     ctx = context[0]
     worst = 0.0
     ctx["position_passes"] = 0
+    ctx["position_progress"] = np.nan
     if not ctx["position_correction"]:
         return worst
     rebound(contacts, k, bodies)
@@ -375,6 +377,8 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
         # integers of um, so every path stops alike); or nothing moved, and another pass
         # would see the very same separations
         stalled = stall > 0.0 and overlap > (1.0 - stall) * met
+        if 0.0 < met < np.inf:
+            ctx["position_progress"] = 1.0 - overlap / met
         settled = worst >= -ctx["position_tolerance"] or stalled
         met = overlap
         if joints.shape[0] == 0:

@@ -317,6 +317,8 @@ CONTEXT = np.dtype(
         ("warm_started_points", I8),
         ("shock_layers", I8),
         ("position_passes", I8),  # position passes in the last step (sandbox.penetration)
+        ("position_progress", F8),  # the fraction of the overlap the pass before the last took
+        # out: 1 - (overlap the last pass met) / (overlap the pass before met); NaN: one pass
         ("joints_together", np.bool_),  # the position stage solves the joints together (the
         # soft step's plan, set each step; the rigid steps sweep them)
         ("sweeps", I8),  # iterative solver: velocity sweeps in the last step (more at a large dt)

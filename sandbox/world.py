@@ -387,7 +387,8 @@ class World(Building, Measures):
         ``sweeps``, the velocity sweeps of the iterative and shock solvers: ``iterations``,
         more at a large dt, where they go on until the contacts hold; and ``position_passes``,
         the passes of the overlap fix: up to ``position_iterations``, fewer once no point
-        overlaps more than ``position_tolerance``)."""
+        overlaps more than ``position_tolerance`` or a pass stalls; and ``position_progress``,
+        the fraction of the overlap the pass before the last took out, NaN after one pass)."""
         if self._found_stats is not None:
             return dict(self._found_stats)
         if self.steps == 0:
@@ -399,7 +400,9 @@ class World(Building, Measures):
             keys.append("shock_layers")
         if self.settings.solver in ("iterative", "shock"):
             keys.append("sweeps")
-        return {key: int(ctx[key]) for key in keys}
+        stats: dict = {key: int(ctx[key]) for key in keys}
+        stats["position_progress"] = float(ctx["position_progress"])
+        return stats
 
     def find_contacts(self) -> list:
         """Broadphase + narrowphase at the current state, without stepping (list of Contact);

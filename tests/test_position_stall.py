@@ -80,3 +80,19 @@ def test_a_pile_its_load_presses_together_stops_after_two_passes():
     assert np.all(runs[0.005][0] == 2), runs[0.005][0]
     assert np.all(runs[0.0][0] == 3), runs[0.0][0]
     assert runs[0.005][1] == pytest.approx(runs[0.0][1], rel=0.1)
+
+
+def test_the_stats_give_what_the_pass_before_the_last_took_out():
+    # the sunk ball: each pass takes out a fifth (beta) of the overlap beyond the slop; one
+    # pass (within the tolerance) reports NaN
+    w = World(gravity=(0.0, 0.0), dt=DT, robust_positions=False, position_tolerance=0.0)
+    ground = w.add_body(Body(name="ground", type="static", position=(0.0, -0.5)))
+    ground.add_shape(Box(10.0, 1.0))
+    w.add_body(Body(name="ball", position=(0.0, 0.4))).add_shape(Circle(0.5))
+    w.step()
+    assert w.stats["position_passes"] == 3
+    assert w.stats["position_progress"] == pytest.approx(0.2, abs=1e-4)  # whole micrometres
+    w.settings.position_tolerance = 0.5
+    w.step()
+    assert w.stats["position_passes"] == 1
+    assert math.isnan(w.stats["position_progress"])
