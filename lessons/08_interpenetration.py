@@ -510,7 +510,8 @@ def poured_pile(settings: dict, n: int = 1000, seconds: float = 4.0) -> dict[str
     for _ in range(round(seconds / DT)):
         world.step()
         out["passes"].append(world.stats["position_passes"])
-        out["progress"].append(world.stats["position_progress"])
+        progress = world.stats["position_progress"]  # None: one pass, nothing to compare
+        out["progress"].append(np.nan if progress is None else progress)
     depths = np.array([c.depth for c in world.find_contacts()])
     overlaps = depths[depths > 0.0]
     return {**{key: np.array(value) for key, value in out.items()},
@@ -518,7 +519,7 @@ def poured_pile(settings: dict, n: int = 1000, seconds: float = 4.0) -> dict[str
 
 
 def median_percent(progress: np.ndarray) -> float | str:
-    """The median of the steps' progress in %, "-" when no step took two passes (all NaN)."""
+    """The median of the steps' progress in %, "-" when no step took two passes."""
     known = progress[np.isfinite(progress)]
     return 100 * float(np.median(known)) if len(known) else "-"
 

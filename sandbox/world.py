@@ -9,6 +9,7 @@ are views of the record fields. A step runs the stages of :mod:`sandbox.step`.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -388,7 +389,7 @@ class World(Building, Measures):
         more at a large dt, where they go on until the contacts hold; and ``position_passes``,
         the passes of the overlap fix: up to ``position_iterations``, fewer once no point
         overlaps more than ``position_tolerance`` or a pass stalls; and ``position_progress``,
-        the fraction of the overlap the pass before the last took out, NaN after one pass)."""
+        the fraction of the overlap the pass before the last took out, None after one pass)."""
         if self._found_stats is not None:
             return dict(self._found_stats)
         if self.steps == 0:
@@ -401,7 +402,8 @@ class World(Building, Measures):
         if self.settings.solver in ("iterative", "shock"):
             keys.append("sweeps")
         stats: dict = {key: int(ctx[key]) for key in keys}
-        stats["position_progress"] = float(ctx["position_progress"])
+        progress = float(ctx["position_progress"])  # NaN: one pass, nothing to compare
+        stats["position_progress"] = None if math.isnan(progress) else progress
         return stats
 
     def find_contacts(self) -> list:
