@@ -528,11 +528,11 @@ def median_percent(progress: np.ndarray) -> float | str:
 # passes, both lines show); the last run is in the table only
 STALLS = {"position_stall 0: every pass": ({"position_stall": 0.0}, "C3", 3.5),
           "default (0.005)": ({}, "C2", 1.5),
-          "one pass a step (position_iterations 1)": ({"position_iterations": 1}, None, 0)}  # fmt: skip
+          "position_iterations 1": ({"position_iterations": 1}, None, 0)}  # fmt: skip
 poured = {label: poured_pile(settings) for label, (settings, _, _) in STALLS.items()}
 settled = slice(-round(2.0 / DT), None)  # the last 2 s, once the pile has settled
-print_table(["passes", "passes a step, last 2 s", "median progress, last 2 s (%)",
-             "mean overlap at the end (mm)", "deepest (mm)"],
+# the last 2 s: passes a step and the median progress; at the end: the overlap left
+print_table(["run", "passes a step", "progress (%)", "mean overlap (mm)", "deepest (mm)"],
             [(label, r["passes"][settled].mean(), median_percent(r["progress"][settled]),
               1000 * r["mean"], 1000 * r["deepest"]) for label, r in poured.items()], 2)  # fmt: skip
 
@@ -557,14 +557,15 @@ save_figure(fig, OUT / "passes_stall.png", dpi=100)
 # %% [markdown]
 # While the discs pour in, a pass takes out up to a fifth of the overlap, and every step takes
 # all three passes. Once the pile lies in the box a pass takes out less than a tenth of a
-# percent (the table's median): what one pass pushes out, the load and the next pairs push
-# back in. The default then stops after two passes, which show the stall, and skips the third;
+# percent (the table's median over the last 2 s): what one pass pushes out, the load and the
+# next pairs push back in. The default then stops after two passes, which show the stall, and
+# skips the third;
 # the pile is left about as deep as with every pass (the table's mean and deepest overlap,
 # within a millimetre or two). In the engine's benchmark of 5,000 discs poured the same way,
 # that takes about 8 % off a step (`benchmarks/ab.py rain_5000`). The passes cannot stop at
-# one, though: with a single pass a step (the table's last row) the pile sinks into itself,
-# its deepest overlap four times as deep. Small as the second pass's share of the whole
-# overlap is, it is what takes out the worst of it.
+# one, though: with a single pass a step (`position_iterations: 1`, the table's last row) the
+# pile sinks into itself, its deepest overlap four times as deep. Small as the second pass's
+# share of the whole overlap is, it is what takes out the worst of it.
 
 # %% [markdown]
 # ## Exercises
