@@ -9,14 +9,19 @@ back."""
 
 from __future__ import annotations
 
-import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from sandbox import Body, Box, Circle, World
+from sandbox.build import build_world
+from sandbox.scene import validate_scene
 
-G = 9.81
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+import scenes  # noqa: E402  (benchmarks/scenes.py: the benchmark scenes as scene dicts)
+
 DT = 1.0 / 60.0
 
 
@@ -34,29 +39,7 @@ def test_a_pass_that_takes_out_less_than_position_stall_is_the_last(stall, passe
     assert 0.5 - ball.position[1] - slop == pytest.approx((0.1 - slop) * 0.8**passes, rel=1e-9)
 
 
-def disc_pile(n: int, **settings) -> tuple[World, list[Body]]:
-    """``n`` discs (r = 0.2 m) in a staggered grid 0.1 m apart, falling into an open box (as
-    the benchmarks' rain)."""
-    w = World(gravity=(0.0, -G), dt=DT, **settings)
-    cols = round(math.sqrt(n))
-    inner = (cols + 0.5) * 0.5 + 0.1
-    height = 2.0 + math.ceil(n / cols) * 0.5
-    for name, x, y, width, tall in (
-        ("floor", 0.0, -0.25, inner + 1.0, 0.5),
-        ("left", -0.5 * inner - 0.25, 0.5 * height, 0.5, height),
-        ("right", 0.5 * inner + 0.25, 0.5 * height, 0.5, height),
-    ):
-        w.add_body(Body(name=name, type="static", position=(x, y))).add_shape(Box(width, tall))
-    discs = []
-    for i in range(n):
-        row, col = divmod(i, cols)
-        x = -0.5 * inner + 0.25 + (col + 0.5 * (row % 2)) * 0.5 + 0.02 * math.sin(12.9898 * i)
-        discs.append(w.add_body(Body(name=f"disc {i}", position=(x, 1.2 + row * 0.5))))
-        discs[-1].add_shape(Circle(0.2, friction=0.5))
-    return w, discs
-
-
-def mean_overlap(discs: list[Body], r: float = 0.2) -> float:
+def mean_overlap(discs: list, r: float = 0.2) -> float:
     """The mean overlap of the discs that overlap (m)."""
     p = np.array([d.position for d in discs])
     gap = np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1)) - 2 * r
@@ -68,10 +51,13 @@ def test_a_pile_its_load_presses_together_stops_after_two_passes():
     # 1,000 discs settle in about 100 steps; from then on every step of the default takes two
     # passes (the second one meets more than 99.5 % of what the first met) where
     # position_stall 0 takes all three, and the pile's mean overlap is within a tenth of it
-    # (measured: 9.7 and 8.9 mm after 300 steps of the benchmarks' rain)
+    # (measured: 10.4 and 9.7 mm after 200 steps)
     runs = {}
     for stall in (0.005, 0.0):
-        w, discs = disc_pile(1000, position_stall=stall)
+        spec = scenes.rain(1000)
+        spec["settings"]["position_stall"] = stall
+        w = build_world(validate_scene(spec))
+        discs = [b for b in w.bodies if b.type == "dynamic"]
         passes = []
         for _ in range(200):
             w.step()
