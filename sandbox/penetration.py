@@ -332,10 +332,11 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     slop; Box2D 2.x's test: a resting pile takes one pass, a deep overlap all of them), or a
     pass stalls: it met more than 1 - ``position_stall`` of the overlap the pass before met (a
     pile its own load presses together, where the passes push against each other: the rain
-    of 5,000 discs, 0.2 % a pass; a spawned pile or a sunk ball, 1.3 % to 40 %); then
+    of 5,000 discs, 0.2 % a pass; a spawned pile or a sunk ball, 1.4 % to 40 %); then
     each body's orientation turned by what the passes turned. ``context["position_passes"]``
     gets how many passes ran, ``context["position_progress"]`` the fraction of the overlap
-    the pass before the last took out (NaN after one pass, or when it met none). Nothing at all when ``settings.position_correction`` is off.
+    the pass before the last took out (NaN after one pass, or when it met none). Nothing at
+    all when ``settings.position_correction`` is off.
     Returns the smallest separation the last contact pass saw (m, < 0 overlapping)."""
     ctx = context[0]
     worst = 0.0
@@ -374,12 +375,11 @@ def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
         ctx["position_passes"] += 1
         # Box2D's stop: no point overlaps more than position_tolerance (three slops); or the
         # pass before took out less than position_stall of the overlap (the sums are exact
-        # integers of um, so every path stops alike); or nothing moved, and another pass
-        # would see the very same separations
-        stalled = stall > 0.0 and overlap > (1.0 - stall) * met
-        if 0.0 < met < np.inf:
-            ctx["position_progress"] = 1.0 - overlap / met
-        settled = worst >= -ctx["position_tolerance"] or stalled
+        # integers of um, so every path stops alike; NaN, never less: nothing to compare);
+        # or nothing moved, and another pass would see the very same separations
+        progress = 1.0 - overlap / met if 0.0 < met < np.inf else np.nan
+        ctx["position_progress"] = progress
+        settled = worst >= -ctx["position_tolerance"] or (stall > 0.0 and progress < stall)
         met = overlap
         if joints.shape[0] == 0:
             if settled or not moved:
