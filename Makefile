@@ -52,7 +52,8 @@ test-bounds: $(STAMP)
 		tests/test_contact_robustness.py tests/test_joint_direct.py tests/test_soft_mass_ratio.py \
 		tests/test_toi.py tests/test_ccd_positions.py tests/test_kept_pairs.py \
 		tests/test_shock_warm_start.py tests/test_speculative.py tests/test_wide_sweeps.py \
-		tests/test_wide_positions.py tests/test_sap_bands.py tests/test_sleep.py
+		tests/test_wide_positions.py tests/test_sap_bands.py tests/test_sleep.py \
+		tests/test_narrowphase.py
 
 lint: $(DEV_STAMP)
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .

@@ -43,7 +43,7 @@ ACROSS_TOL = 1e-9  # m: a vertex pair offset sideways by less than this lies str
 FEATURE_VERTEX_VERTEX = 2 << 32
 
 
-@njit
+@njit(inline="always")  # a call per pair: see sandbox.narrowphase.collide_pair
 def max_separation(wp, o1, c1, o2, c2):
     """Largest separation of polygon 2 along the edge normals of polygon 1, and that edge.
 
@@ -68,7 +68,7 @@ def max_separation(wp, o1, c1, o2, c2):
     return best, edge
 
 
-@njit
+@njit(inline="always")  # a call per pair: see sandbox.narrowphase.collide_pair
 def incident_edge(wp, o2, c2, nx, ny):
     """Edge of polygon 2 (rows ``o2`` to ``o2 + c2`` of ``wp``) whose outward normal is most
     anti-parallel to ``(nx, ny)``."""

@@ -291,7 +291,7 @@ def visit_block(lanes, start, block: bool) -> None:
         lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
 
 
-@njit
+@njit(inline="always")  # as a call, its arrays were reference-counted in and out each colour
 def visit_colour(lanes, owners, first: int, end: int, velocities, block: bool) -> None:
     """One visit of every contact of a group of a colour (blocks ``first`` to ``end``, all
     solved with the block solver or all without: ``block``, :func:`groups`): the bodies'

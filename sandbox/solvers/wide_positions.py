@@ -169,7 +169,7 @@ def visit_block(lanes, start, beta: float) -> None:
         lanes[i + BX], lanes[i + BY], lanes[i + BC], lanes[i + BS], lanes[i + BTURN] = pb
 
 
-@njit
+@njit(inline="always")  # as a call, its arrays were reference-counted in and out each colour
 def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
     """One push of every point of a colour's contacts (blocks ``first`` to ``end``): the
     bodies' poses (``poses``, a row (x, y, cos, sin, turn) per body, :func:`take_poses`) into

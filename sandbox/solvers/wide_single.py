@@ -108,7 +108,7 @@ def visit_block(lanes, start) -> None:
         lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
 
 
-@njit
+@njit(inline="always")  # as a call, its arrays were reference-counted in and out each colour
 def visit_colour(lanes, owners, first: int, end: int, velocities) -> None:
     """One visit of every one-point contact of a colour (blocks ``first`` to ``end``), as
     :func:`sandbox.solvers.wide.visit_colour`: the velocities into all the colour's lanes,
