@@ -249,20 +249,21 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
         a, b = bodies[c["a"]], bodies[c["b"]]
         nx, ny = c["normal"][0], c["normal"][1]
         mass, held = position_masses(c, bodies, layer)
-        if held:
-            e = [0.0, 0.0]
-            arms = [0.0] * 8
+        if held:  # tuples, not lists: a list is allocated and freed each time (a ground contact)
+            e0 = e1 = 0.0
+            arms0 = arms1 = (0.0, 0.0, 0.0, 0.0)
             for j in range(c["count"]):
                 p = c["points"][j]
-                sep, arms[4 * j], arms[4 * j + 1], arms[4 * j + 2], arms[4 * j + 3] = separation(
-                    c, p, bodies
-                )
+                sep, rax, ray, rbx, rby = separation(c, p, bodies)
                 allowed = allowed_separation(c, p, slop, push)
                 worst = min(worst, sep)
                 overlap += overlap_left(sep, allowed)
-                e[j] = min(sep - allowed, 0.0)
-            if e[0] < 0.0 or e[1] < 0.0:
-                push_points(c, bodies, mass, (e[0], e[1]), arms)
+                if j == 0:
+                    e0, arms0 = min(sep - allowed, 0.0), (rax, ray, rbx, rby)
+                else:
+                    e1, arms1 = min(sep - allowed, 0.0), (rax, ray, rbx, rby)
+            if e0 < 0.0 or e1 < 0.0:
+                push_points(c, bodies, mass, (e0, e1), arms0 + arms1)
                 moved = True
             continue
         for j in range(c["count"]):
