@@ -12,7 +12,8 @@ address of every function of every compiled library into ``/tmp/perf-<pid>.map``
 is not kept, so the engine is compiled afresh in this process, into a temporary cache: about a
 minute before the sampling starts.
 
-The world steps ``--settle`` steps first, then ``--steps`` under ``perf`` (the garbage
+``--scene`` is any scene of ``ab.py`` (the benchmark scenes, their soft versions, the
+chains). The world steps ``--settle`` steps first, then ``--steps`` under ``perf`` (the garbage
 collector frozen, so that it does not run while sampling). Each row gives a function's share of
 the samples and that share of the measured time per step. A function numba inlined into its
 caller counts as the caller. Samples outside the engine's compiled functions (numba's runtime, the interpreter,
@@ -38,16 +39,8 @@ import tempfile
 import time
 from pathlib import Path
 
-import scenes  # benchmarks/scenes.py, beside this file
+from ab import SCENES, scene_named  # benchmarks/ab.py, beside this file: its scenes
 
-SCENES = {
-    "ballistic": scenes.ballistic,
-    "rain_100": lambda: scenes.rain(100),
-    "rain_1000": lambda: scenes.rain(1000),
-    "rain_5000": lambda: scenes.rain(5000),
-    "pyramid_20": lambda: scenes.pyramid(20),
-    "pyramid_40": lambda: scenes.pyramid(40),
-}
 OTHER = "(numba's runtime, Python, libraries)"
 
 
@@ -123,7 +116,7 @@ def shares(report: str) -> tuple[dict[str, float], list[tuple[str, float]]]:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", choices=list(SCENES), default="rain_5000")
+    parser.add_argument("--scene", choices=SCENES, default="rain_5000")
     parser.add_argument("--settle", type=int, default=150, help="steps before the sampling")
     parser.add_argument("--steps", type=int, default=300, help="steps sampled")
     parser.add_argument("--top", type=int, default=25, help="functions listed")
@@ -138,7 +131,7 @@ def main() -> int:
     from sandbox.build import build_world
     from sandbox.scene import validate_scene
 
-    world = build_world(validate_scene(SCENES[args.scene]()))
+    world = build_world(validate_scene(scene_named(args.scene)))
     print(f"compiling the engine in this process (about a minute), then {args.settle} steps")
     for _ in range(args.settle):
         world.step()
