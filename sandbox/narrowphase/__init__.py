@@ -102,7 +102,7 @@ def circles_pair(i, j, shapes, bodies, margin):
     """The manifold of circles i and j, as :func:`collide_pair` gives it. Without ``wp``: the
     loop over pairs calls this for two circles, and inlined, ``wp`` is reference-counted
     (numba's runtime, an atomic add coming in and going out) wherever it is an argument, which
-    took a tenth of the narrowphase's time on the rain of 5,000 discs."""
+    took about a tenth of the narrowphase's time on the rain of 5,000 discs (279 against 257 us)."""
     shape_i, shape_j = shapes[i], shapes[j]
     body_i, body_j = bodies[shape_i["body"]], bodies[shape_j["body"]]
     xi, yi = circle_center(shape_i, body_i)
@@ -116,7 +116,7 @@ def circles_pair(i, j, shapes, bodies, margin):
     return count, nx, ny, x0, y0, d0, 0, 0.0, 0.0, 0.0, -1
 
 
-# inlined into the loop over pairs: as a call it took a third of the narrowphase (the manifold
+# inlined into the loop over pairs: as a call it took two fifths of the narrowphase (the manifold
 # returned through memory, wp reference-counted coming in and going out)
 @njit(inline="always")
 def collide_pair(i, j, shapes, wp, bodies, margin):
