@@ -190,14 +190,18 @@ def prepare(contacts, k: int, kept, shapes, bodies, context) -> None:
     (:func:`sandbox.sleeping_contacts.wake_contacts`), the others from the last step's."""
     ctx = context[0]
     previous, store = kept
-    prepare_contacts(contacts, k, shapes, bodies, 0.0, context, ctx["block_solver"])
-    found = 0
-    if ctx["warm_start"]:
-        last = (previous, ctx["contact_count"][ctx["contact_set"]])
-        if ctx["contact_count"][STORE] > 0:
-            found = wake_contacts(contacts, k, bodies, store, context, last)
-        found += match_previous(contacts, k, *last)
-    else:
+    warm = ctx["warm_start"]
+    k_old = ctx["contact_count"][ctx["contact_set"]] if warm else 0
+    stored = warm and ctx["contact_count"][STORE] > 0
+    block = ctx["block_solver"]
+    # the last step's impulses in the same loop, unless islands woke: theirs come first
+    found = prepare_contacts(
+        contacts, k, shapes, bodies, 0.0, context, block, (previous, 0 if stored else k_old)
+    )
+    if stored:
+        found = wake_contacts(contacts, k, bodies, store, context, (previous, k_old))
+        found += match_previous(contacts, k, previous, k_old)
+    if not warm:
         ctx["contact_count"][STORE] = 0  # nothing warm starts: the kept contacts would go stale
     ctx["warm_started_points"] = found
 

@@ -80,7 +80,7 @@ def solve(w, m, push=0.0):
     (m/s) to the disc's x velocity, as gravity would, then solve and restitution."""
     w._prepare(w.dt)
     k = len(m)
-    prepare_contacts(m.records, k, w._geometry.table, w.state, 0.0, w.context, True)
+    prepare_contacts(m.records, k, w._geometry.table, w.state, 0.0, w.context, True, (m.records, 0))
     w.vel[0, 0] += push
     SOLVERS[w.settings.solver].solve(m.records, k, w.joint_table, w.state, w.context)
     restitution(m.records, k, w.state, w.settings.restitution_threshold)
@@ -281,7 +281,9 @@ def overlap_world(method, static_a=False):
 def prepare(w, m):
     """The prepare stage on hand-built contacts (lever arms in each body's frame)."""
     w._prepare(w.dt)
-    prepare_contacts(m.records, len(m), w._geometry.table, w.state, 0.0, w.context, True)
+    prepare_contacts(
+        m.records, len(m), w._geometry.table, w.state, 0.0, w.context, True, (m.records, 0)
+    )
 
 
 def correct(w, m, passes=1):

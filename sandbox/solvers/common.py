@@ -163,14 +163,22 @@ def prepare_block(c) -> None:
 
 @njit
 def prepare_contacts(
-    contacts, k: int, shapes, bodies, beta: float, context, block: bool = True
-) -> None:
+    contacts, k: int, shapes, bodies, beta: float, context, block: bool, last
+) -> int:
     """Prepare the first ``k`` contacts: copy the bodies' inverse masses, zero the impulses,
     then :func:`prepare_point` and, for a solver that has a block solver (``block``),
-    :func:`prepare_block`. ``beta``: the Baumgarte factor of the velocity bias (the rigid
-    solvers pass 0 and fix overlap on positions instead)."""
+    :func:`prepare_block`; then give each the last step's impulses (:func:`carry_impulses`,
+    ``last`` = (the last step's contacts, how many of them: 0 for none)). ``beta``: the
+    Baumgarte factor of the velocity bias (the rigid solvers pass 0 and fix overlap on
+    positions instead). Returns the number of points warm started.
+
+    The warm start's merge runs in this loop, while the contact's record is at hand: as a
+    pass of its own (:func:`match_previous`) it read every record again: the two took 390 us
+    on the rain of 5,000 discs (12,761 contacts, step 150, back to back), together 365."""
     ctx = context[0]
     inv_dt, slop = ctx["inv_dt"], ctx["slop"]
+    previous, k_old = last
+    found = q = 0
     for i in range(k):
         c = contacts[i]
         a, b = bodies[c["a"]], bodies[c["b"]]
@@ -190,6 +198,10 @@ def prepare_contacts(
             prepare_block(c)
         else:
             c["use_block"] = False
+        if k_old > 0:
+            q, matched = carry_impulses(c, previous, k_old, q)
+            found += matched
+    return found
 
 
 @njit
@@ -215,33 +227,43 @@ def first_at_or_after(contacts, k: int, sa: int, sb: int) -> int:
 @njit
 def match_previous(contacts, k: int, previous, k_old: int) -> int:
     """Warm starting (box2d-lite's ``Arbiter::Update``): give each point of this step the
-    impulses of the last step's point with the same shapes and feature id. Both lists are in
-    pair order, sorted by (shape a, shape b), so one forward walk finds every match (a merge).
-    Returns the number of points matched."""
-    found = 0
-    q = 0  # walks forward through the last step's contacts
+    impulses of the last step's point with the same shapes and feature id
+    (:func:`carry_impulses`, contact by contact). Returns the number of points matched."""
+    found = q = 0
     for i in range(k):
-        c = contacts[i]
-        sa, sb = c["shape_a"], c["shape_b"]
-        if q > 0 and not before(previous[q - 1]["shape_a"], previous[q - 1]["shape_b"], sa, sb):
-            q = first_at_or_after(previous, q, sa, sb)  # not in pair order (hand-made contacts)
-        while q < k_old and before(previous[q]["shape_a"], previous[q]["shape_b"], sa, sb):
-            q += 1
-        if q == k_old or previous[q]["shape_a"] != sa or previous[q]["shape_b"] != sb:
-            continue
-        old = previous[q]
-        old_points, old_count, points = old["points"], old["count"], c["points"]
-        for j in range(c["count"]):
-            p = points[j]
-            for jj in range(old_count):
-                o = old_points[jj]
-                if o["feature"] == p["feature"]:
-                    p["normal_impulse"] = o["normal_impulse"]
-                    p["tangent_impulse"] = o["tangent_impulse"]
-                    p["held_sag"] = o["held_sag"]
-                    found += 1
-                    break
+        q, matched = carry_impulses(contacts[i], previous, k_old, q)
+        found += matched
     return found
+
+
+@njit(inline="always")
+def carry_impulses(c, previous, k_old: int, q: int) -> tuple[int, int]:
+    """One contact's part of the warm start: its points get the impulses of the last step's
+    point with the same shapes and feature id. Both lists are in pair order, sorted by (shape
+    a, shape b), so one forward walk over the contacts finds every match (a merge): ``q`` is
+    where the walk stood after the contact before. Returns (where it stands now, the number of
+    points matched)."""
+    sa, sb = c["shape_a"], c["shape_b"]
+    if q > 0 and not before(previous[q - 1]["shape_a"], previous[q - 1]["shape_b"], sa, sb):
+        q = first_at_or_after(previous, q, sa, sb)  # not in pair order (hand-made contacts)
+    while q < k_old and before(previous[q]["shape_a"], previous[q]["shape_b"], sa, sb):
+        q += 1
+    if q == k_old or previous[q]["shape_a"] != sa or previous[q]["shape_b"] != sb:
+        return q, 0
+    found = 0
+    old = previous[q]
+    old_points, old_count, points = old["points"], old["count"], c["points"]
+    for j in range(c["count"]):
+        p = points[j]
+        for jj in range(old_count):
+            o = old_points[jj]
+            if o["feature"] == p["feature"]:
+                p["normal_impulse"] = o["normal_impulse"]
+                p["tangent_impulse"] = o["tangent_impulse"]
+                p["held_sag"] = o["held_sag"]
+                found += 1
+                break
+    return q, found
 
 
 @njit
