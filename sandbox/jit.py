@@ -43,6 +43,10 @@ if JIT_ENABLED:
     import numba
     import numba.core.event
 
+    from sandbox.heap import keep_heap
+
+    keep_heap()  # the compiled step's work arrays reuse the heap from step to step
+
     if CACHE_FOLDER is not None:
         numba.config.CACHE_DIR = str(CACHE_FOLDER)
     _CACHE = CACHE_FOLDER is not None
