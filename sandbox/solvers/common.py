@@ -167,7 +167,7 @@ def prepare_contacts(
 ) -> int:
     """Prepare the first ``k`` contacts: copy the bodies' inverse masses, zero the impulses,
     then :func:`prepare_point` and, for a solver that has a block solver (``block``),
-    :func:`prepare_block`; then give each the last step's impulses (:func:`carry_impulses`,
+    :func:`prepare_block`; then give each the last step's impulses (:func:`match_previous`'s walk,
     ``last`` = (the last step's contacts, how many of them: 0 for none)). ``beta``: the
     Baumgarte factor of the velocity bias (the rigid solvers pass 0 and fix overlap on
     positions instead). Returns the number of points warm started.
@@ -198,9 +198,16 @@ def prepare_contacts(
             prepare_block(c)
         else:
             c["use_block"] = False
-        if k_old > 0:
-            q, matched = carry_impulses(c, previous, k_old, q)
-            found += matched
+        if k_old == 0:
+            continue
+        sa, sb = c["shape_a"], c["shape_b"]  # the walk of match_previous, written out here:
+        # an inlined function that takes the array and loops had it reference-counted each time
+        if q > 0 and not before(previous[q - 1]["shape_a"], previous[q - 1]["shape_b"], sa, sb):
+            q = first_at_or_after(previous, q, sa, sb)
+        while q < k_old and before(previous[q]["shape_a"], previous[q]["shape_b"], sa, sb):
+            q += 1
+        if q < k_old and previous[q]["shape_a"] == sa and previous[q]["shape_b"] == sb:
+            found += carry_points(c, previous[q])
     return found
 
 
@@ -228,30 +235,26 @@ def first_at_or_after(contacts, k: int, sa: int, sb: int) -> int:
 def match_previous(contacts, k: int, previous, k_old: int) -> int:
     """Warm starting (box2d-lite's ``Arbiter::Update``): give each point of this step the
     impulses of the last step's point with the same shapes and feature id
-    (:func:`carry_impulses`, contact by contact). Returns the number of points matched."""
+    (:func:`carry_points`). Both lists are in pair order, sorted by (shape a, shape b), so one
+    forward walk finds every match (a merge). Returns the number of points matched."""
     found = q = 0
     for i in range(k):
-        q, matched = carry_impulses(contacts[i], previous, k_old, q)
-        found += matched
+        c = contacts[i]
+        sa, sb = c["shape_a"], c["shape_b"]
+        if q > 0 and not before(previous[q - 1]["shape_a"], previous[q - 1]["shape_b"], sa, sb):
+            q = first_at_or_after(previous, q, sa, sb)  # not in pair order (hand-made contacts)
+        while q < k_old and before(previous[q]["shape_a"], previous[q]["shape_b"], sa, sb):
+            q += 1
+        if q < k_old and previous[q]["shape_a"] == sa and previous[q]["shape_b"] == sb:
+            found += carry_points(c, previous[q])
     return found
 
 
 @njit(inline="always")
-def carry_impulses(c, previous, k_old: int, q: int) -> tuple[int, int]:
-    """One contact's part of the warm start: its points get the impulses of the last step's
-    point with the same shapes and feature id. Both lists are in pair order, sorted by (shape
-    a, shape b), so one forward walk over the contacts finds every match (a merge): ``q`` is
-    where the walk stood after the contact before. Returns (where it stands now, the number of
-    points matched)."""
-    sa, sb = c["shape_a"], c["shape_b"]
-    if q > 0 and not before(previous[q - 1]["shape_a"], previous[q - 1]["shape_b"], sa, sb):
-        q = first_at_or_after(previous, q, sa, sb)  # not in pair order (hand-made contacts)
-    while q < k_old and before(previous[q]["shape_a"], previous[q]["shape_b"], sa, sb):
-        q += 1
-    if q == k_old or previous[q]["shape_a"] != sa or previous[q]["shape_b"] != sb:
-        return q, 0
+def carry_points(c, old) -> int:
+    """Each point of contact ``c`` gets the impulses of the point of ``old`` (the same shapes'
+    contact in the last step) with the same feature id. Returns how many matched."""
     found = 0
-    old = previous[q]
     old_points, old_count, points = old["points"], old["count"], c["points"]
     for j in range(c["count"]):
         p = points[j]
@@ -263,7 +266,7 @@ def carry_impulses(c, previous, k_old: int, q: int) -> tuple[int, int]:
                 p["held_sag"] = o["held_sag"]
                 found += 1
                 break
-    return q, found
+    return found
 
 
 @njit
