@@ -34,6 +34,8 @@ from sandbox.joints.positions_together import solve_joint_positions_together
 from sandbox.joints.solve import solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, pose_of, set_pose
 from sandbox.orientation import turn_bodies
+from sandbox.prefetch import AHEAD, prefetch_bodies, prefetch_span, span, where
+from sandbox.records import BODY, CONTACT, CONTACT_POINT
 from sandbox.solvers.impulses import overlap_left, push_point, separation_of
 from sandbox.solvers.shock import contact_layers, hold_lower, touching
 from sandbox.solvers.soft import excess_depth
@@ -232,6 +234,30 @@ def push_points(c, bodies, mass, errors, arms) -> None:
     nudge(b, im_b * lam * nx, im_b * lam * ny, ii_b * turn_b)
 
 
+# what a pass reads of a contact's record (bodies, count, normal; point 0's depth to its depth
+# when anchored) and of its bodies' (pose and masses; the turn), asked for ahead
+CONTACT_READ = span(CONTACT, "a", "normal")
+POINT_READ = tuple(
+    CONTACT.fields["points"][1] + at for at in span(CONTACT_POINT, "depth", "anchor_depth")
+)
+BODY_READ, TURN_READ = span(BODY, "com", "inv_moment"), span(BODY, "turn", "turn")
+
+
+@njit(inline="always")
+def fetch_ahead(contacts, order, q: int, k: int, ahead) -> None:
+    """Prefetch (:mod:`sandbox.prefetch`) the record of the contact 2 ``AHEAD`` places on in
+    ``order``, and the bodies of the one ``AHEAD`` on (its record asked for before)."""
+    contacts_at, bodies_at = ahead
+    if q + 2 * AHEAD < k:
+        at = contacts_at[0] + contacts_at[1] * order[q + 2 * AHEAD]
+        prefetch_span(at + CONTACT_READ[0], at + CONTACT_READ[1])
+        prefetch_span(at + POINT_READ[0], at + POINT_READ[1])
+    if q + AHEAD < k:
+        c = contacts[order[q + AHEAD]]
+        prefetch_bodies(c, bodies_at, BODY_READ)
+        prefetch_bodies(c, bodies_at, TURN_READ)
+
+
 @njit
 def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
     """Option 3, one pass (non-linear Gauss-Seidel). Within a layer, point by point, beta of
@@ -244,7 +270,12 @@ def position_impulses(contacts, k: int, bodies, beta: float, bounds, layering):
     order, layer = layering
     worst = overlap = 0.0
     moved = False
+    ahead = ((0, 0), (0, 0))
+    if JIT_ENABLED:  # where the records are, to ask for those of the contacts ahead
+        ahead = (where(contacts), where(bodies))
     for q in range(k):
+        if JIT_ENABLED:
+            fetch_ahead(contacts, order, q, k, ahead)
         c = contacts[order[q]]
         a, b = bodies[c["a"]], bodies[c["b"]]
         nx, ny = c["normal"][0], c["normal"][1]
