@@ -187,7 +187,9 @@ def prepare(contacts, k: int, kept, shapes, bodies, context) -> None:
     when ``context["block_solver"]`` says so: the soft step has none), then the warm-start
     impulses, from ``kept`` = (the last step's contacts, the store of sleeping islands'
     contacts): the contacts of islands that just woke from the store
-    (:func:`sandbox.sleeping_contacts.wake_contacts`), the others from the last step's."""
+    (:func:`sandbox.sleeping_contacts.wake_contacts`), the others from the last step's. Without
+    such islands the last step's come in the prepare loop itself, as it goes (one pass over the
+    records instead of two)."""
     ctx = context[0]
     previous, store = kept
     warm = ctx["warm_start"]

@@ -174,7 +174,8 @@ def prepare_contacts(
 
     The warm start's merge runs in this loop, while the contact's record is at hand: as a
     pass of its own (:func:`match_previous`) it read every record again: the two took 390 us
-    on the rain of 5,000 discs (12,761 contacts, step 150, back to back), together 365."""
+    on the rain of 5,000 discs (12,761 contacts, step 150, back to back), together 340 to
+    365."""
     ctx = context[0]
     inv_dt, slop = ctx["inv_dt"], ctx["slop"]
     previous, k_old = last
