@@ -23,9 +23,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from sandbox.jit import njit
+from sandbox.jit import JIT_ENABLED, njit
 from sandbox.math2d import effective_mass, set_velocity, velocity_of
-from sandbox.records import DYNAMIC
+from sandbox.prefetch import prefetch_record, span, where
+from sandbox.records import CONTACT, CONTACT_POINT, DYNAMIC
 from sandbox.solvers.common import (
     apply_normal,
     apply_tangent,
@@ -49,14 +50,32 @@ def touching(c, gap: float) -> bool:
     return deepest >= -gap
 
 
+# what the layering reads of a contact: its bodies and count, and point 0's depth (point 1's
+# is on the line after it, read only for two points); asked for ahead, as its passes read two
+# of the record's ten lines (sandbox.prefetch)
+LAYER_READ = span(CONTACT, "a", "count")
+DEPTH_READ = tuple(CONTACT.fields["points"][1] + at for at in span(CONTACT_POINT, "depth", "depth"))
+FETCH = 16  # contacts ahead
+
+
+@njit(inline="always")
+def fetch_layer_fields(contacts_at, i: int, k: int) -> None:
+    """Prefetch what :func:`contact_layers` reads of contact ``i + FETCH``."""
+    if JIT_ENABLED and i + FETCH < k:
+        prefetch_record(contacts_at, i + FETCH, LAYER_READ)
+        prefetch_record(contacts_at, i + FETCH, DEPTH_READ)
+
+
 @njit
 def contact_layers(contacts, k: int, bodies, gap: float = np.inf):
     """Breadth-first depth of every body from the fixed ones over the contact graph (over the
     contacts whose shapes came closer than ``gap`` (m): a speculative contact across a wide
     gap does not hold anything up)."""
     n = bodies.shape[0]
+    contacts_at = where(contacts) if JIT_ENABLED else (0, 0)
     degree = np.zeros(n + 1, dtype=np.int64)
     for i in range(k):
+        fetch_layer_fields(contacts_at, i, k)
         if touching(contacts[i], gap):
             degree[contacts[i]["a"] + 1] += 1
             degree[contacts[i]["b"] + 1] += 1
@@ -66,6 +85,7 @@ def contact_layers(contacts, k: int, bodies, gap: float = np.inf):
     fill = start[:-1].copy()
     neighbour = np.empty(start[n], dtype=np.int64)
     for i in range(k):
+        fetch_layer_fields(contacts_at, i, k)
         if not touching(contacts[i], gap):
             continue
         a, b = contacts[i]["a"], contacts[i]["b"]
