@@ -34,7 +34,7 @@ from sandbox.joints.positions_together import solve_joint_positions_together
 from sandbox.joints.solve import solve_joint_positions
 from sandbox.math2d import cross, effective_mass, nudge, pose_of, set_pose
 from sandbox.orientation import turn_bodies
-from sandbox.prefetch import AHEAD, prefetch_bodies, prefetch_span, span, where
+from sandbox.prefetch import AHEAD, prefetch_bodies, prefetch_record, span, where
 from sandbox.records import BODY, CONTACT, CONTACT_POINT
 from sandbox.solvers.impulses import overlap_left, push_point, separation_of
 from sandbox.solvers.shock import contact_layers, hold_lower, touching
@@ -249,9 +249,8 @@ def fetch_ahead(contacts, order, q: int, k: int, ahead) -> None:
     ``order``, and the bodies of the one ``AHEAD`` on (its record asked for before)."""
     contacts_at, bodies_at = ahead
     if q + 2 * AHEAD < k:
-        at = contacts_at[0] + contacts_at[1] * order[q + 2 * AHEAD]
-        prefetch_span(at + CONTACT_READ[0], at + CONTACT_READ[1])
-        prefetch_span(at + POINT_READ[0], at + POINT_READ[1])
+        prefetch_record(contacts_at, order[q + 2 * AHEAD], CONTACT_READ)
+        prefetch_record(contacts_at, order[q + 2 * AHEAD], POINT_READ)
     if q + AHEAD < k:
         c = contacts[order[q + AHEAD]]
         prefetch_bodies(c, bodies_at, BODY_READ)

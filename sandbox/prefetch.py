@@ -49,7 +49,7 @@ else:
 
 
 LINE = 64  # bytes in a cache line
-AHEAD = 8  # how many contacts ahead a loop asks for what it will read
+AHEAD = 8  # how many contacts ahead a loop asks for their bodies (their records: twice as far)
 
 
 @njit(inline="always")
@@ -67,20 +67,19 @@ def where(records) -> tuple[int, int]:
 
 
 @njit(inline="always")
-def prefetch_bodies(c, bodies_at, span) -> None:
-    """Prefetch bytes ``span`` = (first, last) of the records of contact ``c``'s bodies
-    (``bodies_at`` from :func:`where`)."""
-    base, size = bodies_at
-    prefetch_span(base + size * c["a"] + span[0], base + size * c["a"] + span[1])
-    prefetch_span(base + size * c["b"] + span[0], base + size * c["b"] + span[1])
-
-
-@njit(inline="always")
 def prefetch_record(records_at, index: int, span) -> None:
     """Prefetch bytes ``span`` = (first, last) of record ``index`` (``records_at`` from
     :func:`where`)."""
     base, size = records_at
     prefetch_span(base + size * index + span[0], base + size * index + span[1])
+
+
+@njit(inline="always")
+def prefetch_bodies(c, bodies_at, span) -> None:
+    """Prefetch bytes ``span`` = (first, last) of the records of contact ``c``'s bodies
+    (``bodies_at`` from :func:`where`)."""
+    prefetch_record(bodies_at, c["a"], span)
+    prefetch_record(bodies_at, c["b"], span)
 
 
 def span(dtype, first: str, last: str) -> tuple[int, int]:

@@ -25,7 +25,7 @@ import numpy as np
 
 from sandbox.jit import JIT_ENABLED, njit
 from sandbox.math2d import effective_mass, set_velocity, velocity_of
-from sandbox.prefetch import prefetch_record, span, where
+from sandbox.prefetch import AHEAD, prefetch_record, span, where
 from sandbox.records import CONTACT, CONTACT_POINT, DYNAMIC
 from sandbox.solvers.common import (
     apply_normal,
@@ -55,15 +55,14 @@ def touching(c, gap: float) -> bool:
 # of the record's ten lines (sandbox.prefetch)
 LAYER_READ = span(CONTACT, "a", "count")
 DEPTH_READ = tuple(CONTACT.fields["points"][1] + at for at in span(CONTACT_POINT, "depth", "depth"))
-FETCH = 16  # contacts ahead
 
 
 @njit(inline="always")
 def fetch_layer_fields(contacts_at, i: int, k: int) -> None:
-    """Prefetch what :func:`contact_layers` reads of contact ``i + FETCH``."""
-    if JIT_ENABLED and i + FETCH < k:
-        prefetch_record(contacts_at, i + FETCH, LAYER_READ)
-        prefetch_record(contacts_at, i + FETCH, DEPTH_READ)
+    """Prefetch what :func:`contact_layers` reads of contact ``i + 2 AHEAD``."""
+    if JIT_ENABLED and i + 2 * AHEAD < k:
+        prefetch_record(contacts_at, i + 2 * AHEAD, LAYER_READ)
+        prefetch_record(contacts_at, i + 2 * AHEAD, DEPTH_READ)
 
 
 @njit
