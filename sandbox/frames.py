@@ -27,10 +27,12 @@ from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
+from matplotlib.text import Text
 from PIL import Image
 
 from sandbox.debug_draw import LayerArtists
 from sandbox.energy_bars import PANEL, EnergyBars
+from sandbox.frame_text import FrameText
 from sandbox.layer_key import COLORS as LAYER_COLORS
 from sandbox.layer_key import SLEEP_FACE, draw_key, key_layout
 from sandbox.legend_layer import LegendLayer
@@ -285,6 +287,10 @@ class FrameRenderer:
                 self.fig, rect, self.runs, self.colors, panels, size_px, scale, fontsize
             )
             self.animated += self.series.artists
+        # the strings that change every frame (the time, the joules) are drawn by Pillow
+        texts = [artist for artist in self.animated if isinstance(artist, Text)]
+        self.animated = [artist for artist in self.animated if not isinstance(artist, Text)]
+        self.texts = FrameText(texts, self.canvas)
         self.canvas.draw()
         self.background = self.canvas.copy_from_bbox(self.fig.bbox)
         self.legend_layer = None
@@ -371,7 +377,7 @@ class FrameRenderer:
         self.canvas.restore_region(self.background)
         for artist in self.animated:
             artist.axes.draw_artist(artist)
-        return np.asarray(self.canvas.buffer_rgba())
+        return self.texts.over(np.asarray(self.canvas.buffer_rgba()))  # over all of them
 
     def palette_colors(self) -> np.ndarray:
         """RGB uint8 colours this renderer draws with (run fills and edges, greys, white)."""
