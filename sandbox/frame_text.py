@@ -31,12 +31,15 @@ def pillow_font(path: str, size_px: float) -> ImageFont.FreeTypeFont:
 
 
 def plain(text: Text) -> bool:
-    """Whether Pillow can draw ``text`` as matplotlib would: one line, unrotated, no maths,
-    no box or path effects around it."""
+    """Whether Pillow can draw ``text`` as matplotlib would: one line of ASCII (no glyph
+    another font would have to supply), unrotated, unwrapped, no maths, no box, clip or path
+    effects around it."""
     s = text.get_text()
     math = text.get_parse_math() and s.count("$") >= 2 and s.count("$") % 2 == 0
     return (
-        "\n" not in s
+        s.isascii()
+        and "\n" not in s
+        and not text.get_wrap()
         and not math
         and text.get_rotation() == 0
         and text.get_bbox_patch() is None

@@ -93,6 +93,8 @@ def test_colour_and_alpha_are_the_texts():
         dict(x=0.2, y=1.0, s="two\nlines"),
         dict(x=1.0, y=1.0, s="turned", rotation=30),
         dict(x=0.2, y=1.0, s="boxed", bbox=dict(facecolor="yellow")),
+        dict(x=0.2, y=1.0, s="\u03c9 = 3 rad/s"),  # beyond ASCII: matplotlib's font fallback
+        dict(x=0.2, y=1.0, s="wrapped", wrap=True),
     ],
 )
 def test_what_pillow_would_draw_otherwise_matplotlib_draws(options):
@@ -122,3 +124,29 @@ def test_text_half_off_the_canvas_is_cut_at_its_edge():
     agg, pillow = drawn(text, canvas, False), drawn(text, canvas, True)
     assert pillow.max() > 0
     assert abs(extent(agg)[3] - extent(pillow)[3]) <= 1
+
+
+def test_an_animations_time_is_drawn_by_pillow_where_matplotlib_puts_it():
+    # a frame's time label: Pillow's ink where matplotlib draws it (the frame without the
+    # label, then matplotlib's own label over it), and a new time in every frame
+    from test_render import moving_ball
+
+    from sandbox.frames import FrameRenderer
+
+    with FrameRenderer(moving_ball(frames=3), size_px=160) as r:
+        label = r.time_text
+        assert label is not None and label in r.texts.texts and label not in r.animated
+        inks = []
+        for k in (1, 2):
+            pillow = r.frame(k).astype(int)
+            label.set_visible(False)
+            bare = r.frame(k).astype(int)
+            label.set_visible(True)
+            label.axes.draw_artist(label)
+            agg = np.asarray(r.canvas.buffer_rgba())[..., :3].astype(int)
+            a = extent(np.abs(agg - bare).sum(axis=2))
+            p = extent(np.abs(pillow - bare).sum(axis=2))
+            assert np.abs(np.subtract(a[:4], p[:4])).max() <= 1, (k, a, p)
+            inks.append(np.abs(pillow - bare).sum(axis=2))
+        assert label.get_text() == "t = 0.07 s"
+        assert not np.array_equal(inks[0], inks[1])
