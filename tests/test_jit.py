@@ -138,3 +138,28 @@ def test_kernels_compile_and_cache_on_a_locked_down_machine(tmp_path):
     assert value == "42.0" and note.startswith("compile cache in")
     assert Path(folder).parent.parent == tmp_path / "tmp"
     assert list(Path(folder).rglob("*twice*.nbi"))  # the kernel was cached there
+
+
+def test_compiled_functions_have_no_c_callable_twin():
+    # numba's cfunc wrapper (for passing a function as a first-class value, which the engine
+    # never does) is left out: the function's own code is all the library holds
+    import pytest
+
+    if not compiled.JIT_ENABLED:
+        pytest.skip("uncompiled run")
+    import numba
+
+    @compiled.njit(cache=False)
+    def twice(x):
+        return 2.0 * x
+
+    @numba.njit(cache=False)
+    def twice_with_twin(x):
+        return 2.0 * x
+
+    assert twice(1.5) == twice_with_twin(1.5) == 3.0
+    ours = twice.overloads[twice.signatures[0]].library.get_llvm_str()
+    numbas = twice_with_twin.overloads[twice_with_twin.signatures[0]].library.get_llvm_str()
+    assert "cfunc." in numbas  # numba's own default, as this test expects it
+    assert "cfunc." not in ours
+    assert "cpython" in ours  # its Python entry stays
