@@ -3,14 +3,15 @@
 The time in the corner of an animation and the joules beside its energy bars are new strings
 in every frame. matplotlib lays out and draws such a string glyph by glyph in Python: about
 2 to 3 ms for "t = 1.23 s" (matplotlib 3.11), a quarter of a whole frame of bodies. Pillow
-draws the same string with the same font file and the same FreeType in C in a few tens of
-microseconds. So the matplotlib ``Text`` artists stay (they hold the string, font, colour,
+draws the same string with the same font file and the same FreeType in C in about a tenth of
+a millisecond (0.4 ms a label with matplotlib's layout and the compositing). So the matplotlib ``Text`` artists stay (they hold the string, font, colour,
 position and alignment, and tests read them), but :class:`FrameText` draws them: matplotlib
 places each string (its layout, as :meth:`matplotlib.text.Text.draw` has it), Pillow renders
-its glyphs from that pen origin, and the pixels are laid over the
-frame with the "over" operator, C = C_text a + C_frame (1 - a), as Agg lays its own glyphs.
-The glyphs' shapes can differ from matplotlib's by a level or two at their antialiased
-edges; their place does not (tests/test_frame_text.py).
+its glyphs from that pen origin, and the pixels are laid over the frame with the "over"
+operator, C = C_text a + C_frame (1 - a), as Agg lays its own glyphs
+(:func:`sandbox.legend_layer.lay_over`, as for the legend). The glyphs' edges can differ from
+matplotlib's by FreeType's hinting; their ink lands on the same rows and columns to within a
+pixel, its centre within half a pixel (tests/test_frame_text.py).
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from matplotlib.colors import to_rgba
 from matplotlib.font_manager import findfont
 from matplotlib.text import Text
 from PIL import ImageFont
+
+from sandbox.legend_layer import lay_over
 
 
 @lru_cache(maxsize=32)
@@ -75,23 +78,23 @@ class FrameText:
     def over(self, rgba: np.ndarray) -> np.ndarray:
         """Lay every visible, non-empty text over ``rgba`` ((height, width, 3 or 4) uint8, the
         canvas's own pixels, changed in place). Returns ``rgba``."""
-        self.renderer = self.canvas.get_renderer()
+        renderer = self.canvas.get_renderer()
         for text in self.texts:
             if not text.get_visible() or not text.get_text():
                 continue
             if plain(text):
-                self._one(text, rgba)
+                self._one(text, rgba, renderer)
             else:
-                text.draw(self.renderer)
+                text.draw(renderer)
         return rgba
 
-    def _one(self, text: Text, rgba: np.ndarray) -> None:
+    def _one(self, text: Text, rgba: np.ndarray, renderer) -> None:
         s = text.get_text()
         prop = text.get_fontproperties()
-        font = pillow_font(findfont(prop), prop.get_size_in_points() * self.renderer.dpi / 72.0)
-        origin = pen_origin(text, self.renderer)
+        font = pillow_font(findfont(prop), prop.get_size_in_points() * renderer.dpi / 72.0)
+        origin = pen_origin(text, renderer)
         if origin is None:  # a layout this code does not know: matplotlib draws it
-            text.draw(self.renderer)
+            text.draw(renderer)
             return
         x, baseline = origin
         fx, fy = x - np.floor(x), baseline - np.floor(baseline)
@@ -108,6 +111,4 @@ class FrameText:
         a = alpha[rows.start - top : rows.stop - top, cols.start - left : cols.stop - left]
         r, g, b, opacity = to_rgba(text.get_color(), text.get_alpha())
         a = (a * opacity)[..., None]
-        below = rgba[rows, cols, :3].astype(np.float64)
-        color = 255.0 * np.array([r, g, b])
-        rgba[rows, cols, :3] = np.rint(color * a + below * (1.0 - a))
+        lay_over(rgba[rows, cols, :3], 255.0 * np.array([r, g, b]) * a, a)

@@ -18,6 +18,13 @@ from matplotlib.artist import Artist
 from matplotlib.backends.backend_agg import RendererAgg
 
 
+def lay_over(below: np.ndarray, color: np.ndarray, alpha: np.ndarray) -> None:
+    """The "over" operator on ``below`` ((rows, cols, 3) uint8 pixels, changed in place):
+    C = C_top a + C_below (1 - a), with ``color`` = C_top a (premultiplied, 0 to 255) and
+    ``alpha`` = a ((rows, cols, 1), 0 to 1)."""
+    below[...] = np.rint(color + below.astype(np.float64) * (1.0 - alpha))
+
+
 class LegendLayer:
     """The pixels of ``artist`` (a legend) drawn alone on a transparent ``width`` x ``height``
     canvas at ``dpi``, cropped to where it drew anything."""
@@ -41,6 +48,5 @@ class LegendLayer:
         C = C_legend a + C_frame (1 - a). Returns ``rgb``."""
         if self.empty:
             return rgb
-        below = rgb[self.rows, self.cols].astype(np.float64)
-        rgb[self.rows, self.cols] = np.rint(self.color + below * (1.0 - self.alpha))
+        lay_over(rgb[self.rows, self.cols], self.color, self.alpha)
         return rgb
