@@ -109,6 +109,26 @@ if JIT_ENABLED:
     NOTICE = CompileNotice()
     numba.core.event.register("numba:compile", NOTICE)
 
+    class FrameStackKeeper(numba.core.event.Listener):
+        """When this process first compiles, Python's frame-stack chunks are kept for reuse
+        (:mod:`sandbox.frame_stack`): numba's compiler would otherwise map and unmap one at
+        nearly every deep call. A process that only loads compiled kernels is left as it was."""
+
+        def __init__(self) -> None:
+            self.kept = False
+
+        def on_start(self, event) -> None:
+            if not self.kept:
+                self.kept = True  # before compiling the allocator, whose compile is nested
+                from sandbox.frame_stack import keep_frame_stack
+
+                keep_frame_stack()
+
+        def on_end(self, event) -> None:
+            pass
+
+    numba.core.event.register("numba:compile", FrameStackKeeper())
+
     class CompileCount(numba.core.event.Listener):
         """How many functions this process compiles from now on (``count``), nested ones
         included: a warmup's progress between two families. ``close()`` stops counting."""
