@@ -163,3 +163,36 @@ def test_compiled_functions_have_no_c_callable_twin():
     assert "cfunc." in numbas  # numba's own default, as this test expects it
     assert "cfunc." not in ours
     assert "cpython" in ours  # its Python entry stays
+
+
+# --- the interpreter's settings while compiling (sandbox.jit.WhileCompiling) --------------------
+
+
+@pytest.mark.skipif(not compiled.JIT_ENABLED, reason="nothing compiles")
+def test_full_collections_are_rarer_only_while_compiling():
+    import gc
+
+    import numba
+
+    seen = []
+
+    class Seen(numba.core.event.Listener):
+        def on_start(self, event):
+            seen.append(gc.get_threshold())
+
+        def on_end(self, event):
+            pass
+
+    before = gc.get_threshold()
+    listener = Seen()
+    numba.core.event.register("numba:compile", listener)
+    try:
+        compiled.njit(cache=False)(lambda x: x + 1)(1)
+        assert gc.get_threshold() == before  # as it was once the compile ended
+        with pytest.raises(numba.TypingError):  # a compile that fails ends as well
+            compiled.njit(cache=False)(lambda x: x.nothing)(1)
+        assert gc.get_threshold() == before
+    finally:
+        numba.core.event.unregister("numba:compile", listener)
+    young, middle, full = before
+    assert seen and seen[0] == (young, middle, full * compiled.WhileCompiling.RARER)
