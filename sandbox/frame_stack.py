@@ -5,7 +5,7 @@ takes each chunk from the object arenas' allocator (``mmap`` on Linux) and gives
 soon as the first frame in it returns. numba's compiler recurses deep and back, crossing the
 same chunk boundary over and over, so every crossing maps 16 KiB of fresh pages and unmaps them
 again: compiling half of the lessons' kernels (one share of ``sandbox warmup --lessons``) took
-970,000 page faults and 8.3 s of system time, nine in ten of its page faults.
+970,000 page faults and 8.3 s of system time (86 % of its page faults were these).
 
 :func:`keep_frame_stack` puts in an arena allocator that keeps up to :data:`KEPT` freed chunks
 for the next crossing, and maps and unmaps every other size (the object arenas) as CPython's own
@@ -33,7 +33,7 @@ PROT = mmap.PROT_READ | mmap.PROT_WRITE  # the pages CPython's arena allocator m
 FLAGS = mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS
 MEASURED = (
     "one share of `sandbox warmup --lessons`: 972,530 page faults and 8.26 s of system time "
-    "before, 125,504 and 0.82 s after; 103.8 s against 93.3 s"
+    "before, 125,504 and 0.82 s after (one run each: 103.8 s against 93.3 s)"
 )
 
 # the C library's mmap and munmap, found by name when the compiled code is loaded (pointers as

@@ -121,8 +121,9 @@ if JIT_ENABLED:
 
         A process that only loads compiled kernels is left as it was."""
 
-        # one share of the lessons' warmup (`sandbox warmup --lessons --part 1/2`): 32 full
-        # collections and 9.8 s of collecting in all; 4 and 3.7 s (peak memory 594 MB, 638 MB)
+        # one share of the lessons' warmup (`sandbox warmup --lessons --part 1/2`, two rounds):
+        # 32 full collections and 7.9 to 8.6 s of collecting in all; with this, 4 and 3.4 to
+        # 3.8 s (peak memory 594 MB, 638 MB)
         RARER = 10
 
         def __init__(self) -> None:
