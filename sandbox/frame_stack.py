@@ -19,13 +19,13 @@ from __future__ import annotations
 import ctypes
 import functools
 import mmap
-import os
 import sys
 
 import numpy as np
 from numba import carray, cfunc, types
 
 from sandbox.compile_cache import CACHE_FOLDER
+from sandbox.heap import own_settings
 
 CHUNK = 16 * 1024  # bytes: a chunk of CPython's frame stack (DATA_STACK_CHUNK_SIZE)
 KEPT = 16  # freed chunks kept for reuse (256 KiB at most)
@@ -96,7 +96,7 @@ def applies() -> bool:
     3.11 or later on Linux with the global interpreter lock (the allocator is called holding it),
     unless ``SANDBOX_HEAP=system``."""
     return (
-        os.environ.get("SANDBOX_HEAP", "keep") != "system"
+        not own_settings()
         and sys.platform.startswith("linux")
         and sys.implementation.name == "cpython"
         and sys.version_info >= (3, 11)

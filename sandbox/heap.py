@@ -27,11 +27,17 @@ TRIM = 128 * 2**20  # bytes: free space at the heap's top kept for the next step
 MEASURED = "rain of 5,000 discs: 45 to 46 page faults a step before, 3.4 after"
 
 
+def own_settings() -> bool:
+    """Whether ``SANDBOX_HEAP=system`` asks to leave the C library's and the interpreter's own
+    memory settings (this module's heap, :mod:`sandbox.frame_stack`'s frame stack)."""
+    return os.environ.get("SANDBOX_HEAP", "keep") == "system"
+
+
 def keep_heap() -> bool:
     """Set the heap's thresholds (:data:`MMAP`, :data:`TRIM`) for the whole process, once,
     unless ``SANDBOX_HEAP=system`` or the C library is not glibc (then nothing changes).
     Returns whether they were set."""
-    if os.environ.get("SANDBOX_HEAP", "keep") == "system" or not sys.platform.startswith("linux"):
+    if own_settings() or not sys.platform.startswith("linux"):
         return False
     try:
         libc = ctypes.CDLL(None)  # the symbols the process has loaded: the C library's

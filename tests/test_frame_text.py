@@ -63,7 +63,8 @@ def extent(ink: np.ndarray) -> tuple[float, ...]:
 )
 def test_pillow_draws_the_string_where_matplotlib_does(options):
     # the same font file and FreeType: the ink starts and ends on the same rows and columns
-    # to within a pixel (hinting), its centre within 0.6 px (Pillow starts the glyphs on a whole row), and is as dark in all
+    # to within a pixel (hinting), its centre within 0.6 px (Pillow starts the glyphs on a
+    # whole row), and is as dark in all
     text, canvas = canvas_with(**options)
     agg, pillow = drawn(text, canvas, False), drawn(text, canvas, True)
     a, p = extent(agg), extent(pillow)

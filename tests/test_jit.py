@@ -140,13 +140,10 @@ def test_kernels_compile_and_cache_on_a_locked_down_machine(tmp_path):
     assert list(Path(folder).rglob("*twice*.nbi"))  # the kernel was cached there
 
 
+@pytest.mark.skipif(not compiled.JIT_ENABLED, reason="nothing compiles")
 def test_compiled_functions_have_no_c_callable_twin():
     # numba's cfunc wrapper (for passing a function as a first-class value, which the engine
     # never does) is left out: the function's own code is all the library holds
-    import pytest
-
-    if not compiled.JIT_ENABLED:
-        pytest.skip("uncompiled run")
     import numba
 
     @compiled.njit(cache=False)
