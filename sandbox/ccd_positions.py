@@ -35,7 +35,7 @@ def sweep_position_moves(bodies, rot, shapes, vertices, context, before, found) 
     (:func:`poses`, taken before the stage) to where the stage left it, at its first impact:
     ``motion`` and ``motion_turn`` become the stage's move, other bodies stand still (they
     have moved already), and :func:`~sandbox.toi.limit_ccd_motion` (with ``found`` = this
-    step's (contacts, k, joints)) shortens it as it does the step's own motion. Nothing at
+    step's (contacts, k, joints, True)) shortens it as it does the step's own motion. Nothing at
     all unless some ``ccd`` body moved further than the impact target: a smaller move cannot
     cross a face the narrowphase would not see next step."""
     target = impact_target(context)

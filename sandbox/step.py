@@ -330,7 +330,8 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd, work, plan) -> Non
     ``plan``, :func:`~sandbox.joints.solve.soft_joint_plan`, decided once for the step) and
     the contacts with the soft bias, moves the bodies, and relaxes (solves again without
     bias). ``ccd``: None, or for a world with ``ccd`` bodies this step's (contacts, k,
-    joints), which each substep's moves are limited by (:func:`sandbox.toi.limit_ccd_motion`).
+    joints, True), which each substep's moves are limited by
+    (:func:`sandbox.toi.limit_ccd_motion`).
 
     None, not a flag: numba leaves out a branch on ``is not None`` of an argument that is None
     before it types the function, so a step without continuous collision never compiles it
@@ -510,7 +511,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     clock.lap("restitution")
     plan_motion(a.bodies, ctx["dt"])
     if world.has_ccd:
-        limit_ccd_motion(a.bodies, a.shapes, a.vertices, a.context, None)
+        limit_ccd_motion(a.bodies, a.shapes, a.vertices, a.context, (contacts, k, a.joints, False))
     move_bodies(a.bodies, a.rot, a.context)
     clock.lap("integrate_positions")
     position_stage(world, a, (contacts, k), False)
@@ -530,7 +531,7 @@ def staged_soft(world, found, a, clock) -> int:
     begin_soft(contacts, k, (previous, a.buffers.sets[STORE]), model, a.context)
     clock.lap("prepare_contacts")
     plan = soft_joint_plan(a.joints, a.bodies, a.context)
-    ccd = (contacts, k, a.joints) if world.has_ccd else None
+    ccd = (contacts, k, a.joints, True) if world.has_ccd else None
     soft_substeps(contacts, k, model, a.rot, a.context, ccd, a.work, plan)
     position_stage(world, a, (contacts, k), plan[1])
     clock.lap("solve")
@@ -556,4 +557,4 @@ def position_stage(world, a, found, joints_together: bool) -> None:
     fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
     if before is not None:
         geometry = (a.bodies, a.rot, a.shapes, a.vertices, a.context)
-        sweep_position_moves(*geometry, before, (contacts, k, a.joints))
+        sweep_position_moves(*geometry, before, (contacts, k, a.joints, True))

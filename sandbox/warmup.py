@@ -228,11 +228,13 @@ def lesson_kernels() -> None:
     disc = (0, 0.5, np.zeros(2), np.zeros((0, 2)))
     square = (1, 0.0, np.zeros(2), np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]))
     distance(disc, (np.zeros(2), 0.0), square, (np.array([2.0, 0.0]), 0.0))
-    time_of_impact(
+    time_of_impact(  # with its limits, as the tunnelling lesson and the step call it
         disc,
         (np.zeros(2), 0.0, np.array([3.0, 0.0]), 0.0),
         square,
         (np.array([2.0, 0.0]), 0.0, np.array([2.0, 0.0]), 0.0),
+        0.005,
+        0.00125,
     )
     sap.describe(boxes)  # the sweep's intervals, as the broadphase lesson draws them
     rot, cs = np.zeros((2, 4)), np.zeros((2, 2))  # the rotation lesson's kernels

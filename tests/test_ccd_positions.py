@@ -30,7 +30,7 @@ def wall_and_two_balls():
 
 def sweep(world, before) -> None:
     g = world.geometry()
-    found = (np.zeros(0, dtype=CONTACT), 0, world.joint_table)
+    found = (np.zeros(0, dtype=CONTACT), 0, world.joint_table, True)
     sweep_position_moves(world.state, world.rot, g.table, g.vertices, world.context, before, found)
 
 

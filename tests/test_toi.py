@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from sandbox.geometry import box_vertices
+from sandbox.records import CONTACT
 from sandbox.toi import ccd_fractions, distance, limit_ccd_motion, swept_pairs, time_of_impact
 
 DT = 1.0 / 60.0
@@ -150,7 +151,9 @@ def test_ccd_fractions_and_limit_motion():
     bodies["motion"] = dp
     pairs = swept_pairs(bodies, g.table)
     assert [tuple(x) for x in pairs] == [(0, 1), (0, 2)]  # (1, 2): swept boxes do not meet
-    frac = ccd_fractions(bodies, g.table, g.vertices, pairs, 0.005, 0.00125)
+    # the rigid step's own motion: no narrowphase contact needed (held False)
+    found = (np.zeros(0, dtype=CONTACT), 0, world.joint_table, False)
+    frac = ccd_fractions(bodies, g.table, g.vertices, pairs, 0.005, 0.00125, found)
     # bullet: stops 0.005 short of the wall, gap (0.94 - 0.005) over 3.333 m of motion
     assert abs(frac[1] - (0.94 - 0.005) / (200.0 * DT)) < 0.00125 / (200.0 * DT) + 1e-12
     assert frac[0] == 1.0 and frac[3] == 1.0
@@ -159,7 +162,7 @@ def test_ccd_fractions_and_limit_motion():
     # centre goes down to 1.03 at the lowest, 0.07 of the 0.1 m, a fraction of 0.7
     assert abs(frac[2] - 0.7) <= 0.00125 / 0.1 + 1e-12
 
-    limit_ccd_motion(bodies, g.table, g.vertices, world.context, None)
+    limit_ccd_motion(bodies, g.table, g.vertices, world.context, found)
     step = bodies["motion"]
     np.testing.assert_allclose(step[[0, 3]], dp[[0, 3]], atol=0)
     np.testing.assert_allclose(step[2], frac[2] * dp[2], atol=0)
