@@ -177,6 +177,28 @@ def test_without_a_server_the_launcher_is_an_ordinary_kernel(tmp_path):
         stop(manager, client)
 
 
+def test_the_launcher_starts_without_site_packages_and_imports_only_the_standard_library(
+    tmp_path,
+):
+    # the kernel spec runs prefork.py by its path with -S: no third-party module, not even the
+    # sandbox package, can be imported there, so the launcher must not need one
+    import json
+    import subprocess
+
+    specs = prefork.write_spec(tmp_path / "kernels", tmp_path / "nobody-listens")
+    python, flag, path = json.loads((specs / "python3" / "kernel.json").read_text())["argv"][:3]
+    assert flag == "-S" and Path(path).resolve() == Path(prefork.__file__).resolve()
+    usage = subprocess.run([python, "-S", path], capture_output=True, text=True, timeout=60)
+    assert usage.returncode == 1 and "usage: python -m sandbox.course.prefork" in usage.stderr
+    names = "sorted({m.split('.')[0] for m in sys.modules})"
+    code = f"import json, runpy, sys; runpy.run_path({path!r}); print(json.dumps({names}))"
+    listed = subprocess.run([python, "-S", "-c", code], capture_output=True, text=True, timeout=60)
+    assert listed.returncode == 0, listed.stderr
+    loaded = set(json.loads(listed.stdout))
+    assert "socket" in loaded  # the launcher's own imports ran
+    assert not loaded & {"sandbox", "numpy", "numba", "matplotlib", "ipykernel", "zmq"}
+
+
 def test_a_kernel_asked_for_with_other_import_settings_starts_afresh(server, tmp_path):
     _, specs = server
     manager, client = start(specs, tmp_path, {"SANDBOX_JIT": "0"})
