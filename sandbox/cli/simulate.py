@@ -207,7 +207,9 @@ def run(args: argparse.Namespace) -> int:
         steps = _pymunk_steps(scene, args.steps, dt)
     written = []
     with output_set():
-        last, rows_written = _run(steps, args.trace, list(frames.values()), scene is not None)
+        last, rows_written = _run(
+            steps, args.steps, args.trace, list(frames.values()), scene is not None
+        )
         if args.trace:
             written.append((args.trace, _trace_note(rows_written, args.steps, len(world.bodies))))
         if frames:
@@ -254,14 +256,19 @@ def _finish(frames, steps: int, keep_last: bool):
     return frames.recording
 
 
-def _run(steps, trace_path, samplers: list, rows_sampled: bool) -> tuple[list, int]:
-    """Step through ``steps``, streaming rows to the trace; the last rows and the rows written."""
+def _run(steps, total: int, trace_path, samplers: list, rows_sampled: bool) -> tuple[list, int]:
+    """Step through ``steps`` (``total`` of them), streaming rows to the trace, with a bar of the
+    steps on a terminal when the run takes more than a couple of seconds
+    (:class:`~sandbox.cli.progress.StepBar`); the last rows and the rows written."""
+    from sandbox.cli.progress import StepBar
     from sandbox.trace import TraceWriter, check_finite
 
     last: list = []
     with contextlib.ExitStack() as stack:
         trace = stack.enter_context(TraceWriter(trace_path)) if trace_path else None
+        bar = stack.enter_context(StepBar(total))
         for step, t, rows in steps:
+            bar.done(step)
             if trace is not None:
                 trace.write(rows)  # refuses rows that are not finite
             else:
