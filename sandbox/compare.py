@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -152,26 +152,42 @@ def _arrays(rows: Sequence[tuple], n: int) -> tuple[np.ndarray, np.ndarray, np.n
     return times, np.ascontiguousarray(data[..., :3]), np.ascontiguousarray(data[..., 3:])
 
 
-def run_sandbox(spec: dict, steps: int, label: str = "sandbox", overrides=None) -> Run:
-    """Run a validated scene dict in this engine for ``steps`` steps (energy recorded each step)."""
+def run_sandbox(
+    spec: dict,
+    steps: int,
+    label: str = "sandbox",
+    overrides=None,
+    on_step: Callable[[], None] | None = None,
+) -> Run:
+    """Run a validated scene dict in this engine for ``steps`` steps (energy recorded each step);
+    ``on_step()``, if given, is called after each step."""
     from sandbox.build import build_world
     from sandbox.trace import run_world
 
     world = build_world(spec)
     energy = [world.energy()]
-    rows = list(run_world(world, steps, on_step=lambda w: energy.append(w.energy())))
+
+    def stepped(w) -> None:
+        energy.append(w.energy())
+        if on_step is not None:
+            on_step()
+
+    rows = list(run_world(world, steps, on_step=stepped))
     times, poses, vels = _arrays(rows, len(world.bodies))
     slug = "_".join(f"{k}_{_shown(v)}" for k, v in (overrides or {}).items()) or "sandbox"
     return Run(label, slug, dict(overrides or {}), times, poses, vels, np.array(energy), rows)
 
 
-def run_pymunk_scene(scene, steps: int) -> Run:
-    """Run a built :class:`~sandbox.pymunk_bridge.PymunkScene` for ``steps`` steps."""
+def run_pymunk_scene(scene, steps: int, on_step: Callable[[], None] | None = None) -> Run:
+    """Run a built :class:`~sandbox.pymunk_bridge.PymunkScene` for ``steps`` steps;
+    ``on_step()``, if given, is called after each step."""
     rows: list[tuple] = []
     energy = []
     for n in range(int(steps) + 1):
         if n > 0:
             scene.step()
+            if on_step is not None:
+                on_step()
         rows.extend((n, scene.time, *row) for row in scene.state())
         energy.append(pymunk_energy(scene))
     times, poses, vels = _arrays(rows, len(scene.bodies))
@@ -281,12 +297,14 @@ def compare(
     ``variants``: settings to overlay, e.g. ``{"solver": ["pairwise"], "integrator": ["rk4"]}``;
     ``gif``: write ``overlay.gif`` (``fps`` frames per simulated second, at most ``max_frames``,
     ``size_px`` high, ``panel`` adds the energy plot, ``view`` (xmin, xmax, ymin, ymax) in m).
-    ``out_dir=None`` computes without writing. The table is
-    printed unless ``quiet``. Raises BridgeError (scene not expressible in pymunk) or ValueError
-    (bad variant) before anything is written.
+    ``out_dir=None`` computes without writing. The table is printed unless ``quiet``, and on a
+    terminal a bar of the runs' steps is drawn while they take more than a couple of seconds
+    (:class:`~sandbox.step_bar.StepBar`). Raises BridgeError (scene not expressible in pymunk)
+    or ValueError (bad variant) before anything is written.
     """
     from sandbox.pymunk_bridge import PymunkScene
     from sandbox.scene import validate_scene
+    from sandbox.step_bar import StepBar
 
     spec = validate_scene(spec)
     steps = int(steps)
@@ -295,10 +313,15 @@ def compare(
     scene = PymunkScene.from_scene(spec)  # BridgeError here, before anything runs or is written
     extra = _variant_specs(spec, variants)
 
-    runs = [run_sandbox(spec, steps), run_pymunk_scene(scene, steps)]
-    for overrides, variant in extra:
-        label = "sandbox " + " ".join(f"{k}={_shown(v)}" for k, v in overrides.items())
-        runs.append(run_sandbox(variant, steps, label, overrides))
+    # every run's steps in one bar on a terminal, for a comparison of more than a few seconds
+    with StepBar(steps * (2 + len(extra)), quiet=quiet) as bar:
+        runs = [
+            run_sandbox(spec, steps, on_step=bar.step),
+            run_pymunk_scene(scene, steps, bar.step),
+        ]
+        for overrides, variant in extra:
+            label = "sandbox " + " ".join(f"{k}={_shown(v)}" for k, v in overrides.items())
+            runs.append(run_sandbox(variant, steps, label, overrides, bar.step))
 
     names = [b["name"] for b in spec["bodies"]]
     moving = [i for i, b in enumerate(spec["bodies"]) if b["type"] != "static"]

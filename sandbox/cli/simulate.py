@@ -259,8 +259,8 @@ def _finish(frames, steps: int, keep_last: bool):
 def _run(steps, total: int, trace_path, samplers: list, rows_sampled: bool) -> tuple[list, int]:
     """Step through ``steps`` (``total`` of them), streaming rows to the trace, with a bar of the
     steps on a terminal when the run takes more than a couple of seconds
-    (:class:`~sandbox.cli.progress.StepBar`); the last rows and the rows written."""
-    from sandbox.cli.progress import StepBar
+    (:class:`~sandbox.step_bar.StepBar`); the last rows and the rows written."""
+    from sandbox.step_bar import StepBar
     from sandbox.trace import TraceWriter, check_finite
 
     last: list = []
@@ -268,7 +268,8 @@ def _run(steps, total: int, trace_path, samplers: list, rows_sampled: bool) -> t
         trace = stack.enter_context(TraceWriter(trace_path)) if trace_path else None
         bar = stack.enter_context(StepBar(total))
         for step, t, rows in steps:
-            bar.done(step)
+            if step > 0:  # step 0: the initial state
+                bar.step()
             if trace is not None:
                 trace.write(rows)  # refuses rows that are not finite
             else:
