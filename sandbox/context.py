@@ -61,6 +61,7 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     ctx["contact_margin"] = max(s.contact_margin, float(np.hypot(*gravity)) * dt * dt)
     ctx["touch_margin"] = s.contact_margin
     ctx["look_ahead"] = dt if getattr(s, "speculative", False) else 0.0
+    ctx["box_prediction"] = s.box_prediction  # sap: steps of travel a swept box reaches ahead
     for key, default in SOFT_DEFAULTS:
         ctx[key] = getattr(s, key, default)
     ctx["joint_solver"] = JOINT_SOLVERS.index(getattr(s, "joint_solver", "auto"))

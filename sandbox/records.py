@@ -300,6 +300,7 @@ CONTEXT = np.dtype(
         ("touch_margin", F8),  # the setting: closer than this counts as touching (m)
         ("look_ahead", F8),  # s: speculative contacts reach as far as bodies move in this (dt,
         # with settings.speculative; 0: contact_margin alone; sandbox.speculative)
+        ("box_prediction", F8),  # steps of travel the swept boxes are stretched by (sap)
         ("contact_hertz", F8),
         ("contact_damping_ratio", F8),
         ("joint_hertz", F8),

@@ -169,6 +169,16 @@ class Settings:
         "through a thin wall (off: contact_margin alone, as the tunnelling lesson shows; the "
         "pairwise solver resolves only overlapping points and ignores them)",
     )
+    box_prediction: float = _setting(
+        2.0,
+        "number",
+        "sweep and prune (broadphase sap) stretches each shape's box along its velocity by "
+        "this many steps of travel and keeps the pairs it found until a shape leaves its box "
+        "(Box2D 2.3's aabbMultiplier; 0: a 2 cm spare margin alone); only how often it sweeps "
+        "changes, not the pairs or any result",
+        Range(0.0, 16.0, "steps"),
+        ge=0.0,
+    )
     sleep: bool = _setting(
         False, "boolean", "let bodies that have come to rest sleep until something touches them"
     )

@@ -106,13 +106,12 @@ MOVING_KINEMATIC = 2
 # pairs until a shape leaves its box (Box2D's aabbMargin is 0.1 m). Measured on the pyramid of
 # base 40 under soft, 300 steps: 12 sweeps at 1 cm, 6 at 2 cm, 2 at 5 cm
 FAT_MARGIN = 0.02
-# and stretches each box along its body's velocity by this many steps of travel, so that a
-# moving shape stays within its swept box for a few steps too (Box2D 2.3's aabbMultiplier is
-# 2; Chipmunk stretches its boxes by the velocity too). Measured over 200 steps, sweeps and
-# pairs a step: 1,000 free bodies 193 sweeps unstretched, 65 at 2; rain of 5,000 198 and
-# 9,036, 133 and 13,816 at 2, 127 and 16,632 at 4, 122 and 22,982 at 8 (the extra pairs out
-# of reach cost the narrowphase about what the sweeps saved)
-PREDICT_STEPS = 2.0
+# It also stretches each box along its body's velocity by settings.box_prediction steps of
+# travel (2 by default, as Box2D 2.3's aabbMultiplier; Chipmunk stretches its boxes by the
+# velocity too), so a moving shape stays within its swept box for a few steps. Measured over
+# 200 steps, sweeps and pairs a step: 1,000 free bodies 193 sweeps unstretched, 65 at 2; rain
+# of 5,000 198 and 9,036, 133 and 13,816 at 2, 127 and 16,632 at 4, 122 and 22,982 at 8 (the
+# extra pairs out of reach cost the narrowphase about what the sweeps saved)
 
 
 @njit
@@ -151,7 +150,7 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     is too small (nothing else changed).
 
     The boxes are swept grown by :data:`FAT_MARGIN` more than the contact margin and stretched
-    along their velocities by :data:`PREDICT_STEPS` steps, and last step's pairs are kept while
+    along their velocities by ``settings.box_prediction`` steps of travel, and last step's pairs are kept while
     every shape's box stays within the box it was swept with (:func:`boxes_hold`, as Box2D's
     fat AABBs): any two shapes whose boxes overlap now had
     overlapping swept boxes, so the kept pairs hold all of them, and the narrowphase leaves
@@ -163,7 +162,7 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
         ctx["pair_tests"] = 0
         return ctx["pairs"]
     ctx["pairs_kept"] = False
-    predict = PREDICT_STEPS * ctx["dt"]
+    predict = ctx["box_prediction"] * ctx["dt"]
     place_proxies(shapes, vertices, bodies, (margin + FAT_MARGIN, ahead, predict), proxies)
     d, recount, k, tests = sweep(proxies, ctx["sweep_direction"], ctx["sweep_recount"], pairs[0])
     ctx["sweep_direction"], ctx["sweep_recount"] = d, recount

@@ -1,7 +1,7 @@
 """Sweep and prune keeps its pairs while every shape stays within the box it was swept with
-(``sandbox.step.find_pairs``, ``FAT_MARGIN``, stretched along the velocity by
-``PREDICT_STEPS``): a pile at rest is swept again only when something moves, a falling crowd
-every few steps, and both step exactly as with pairs found afresh every step."""
+(``sandbox.step.find_pairs``: ``FAT_MARGIN`` to spare, stretched along the velocity by
+``settings.box_prediction`` steps): a pile at rest is swept again only when something moves, a
+falling crowd every few steps, and both step exactly as with pairs found afresh every step."""
 
 import sys
 from pathlib import Path
@@ -13,7 +13,7 @@ from step_paths import same_state
 from sandbox import Body, Box, Circle, World
 from sandbox.build import build_world
 from sandbox.scene import validate_scene
-from sandbox.step import FAT_MARGIN, PREDICT_STEPS
+from sandbox.step import FAT_MARGIN
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import scenes  # noqa: E402  (benchmarks/scenes.py: the benchmark scenes as scene dicts)
@@ -25,9 +25,9 @@ def pyramid(broadphase: str, solver: str) -> World:
     return build_world(spec)
 
 
-def rain(broadphase: str) -> World:
+def rain(broadphase: str, box_prediction: float = 2.0) -> World:
     spec = validate_scene(scenes.rain(100))
-    spec["settings"].update(broadphase=broadphase)
+    spec["settings"].update(broadphase=broadphase, box_prediction=box_prediction)
     return build_world(spec)
 
 
@@ -96,26 +96,37 @@ def test_a_move_within_the_spare_margin_keeps_the_pairs():
     assert np.isfinite(w.com).all()
 
 
+def sweeps_and_state(world: World, fresh: World, steps: int) -> int:
+    """Step both worlds; assert the same contacts every step and the same state to the bit at
+    the end; return how many of ``world``'s steps swept."""
+    sweeps = 0
+    for _ in range(steps):
+        sweeps += swept(world)
+        world.step()
+        fresh.step()
+        assert world.stats["contacts"] == fresh.stats["contacts"]
+    assert same_state(world, fresh)
+    return sweeps
+
+
 def test_falling_discs_keep_their_pairs_for_steps_and_step_as_with_fresh_ones():
     # a hundred discs rain onto a floor at up to several metres a second, far more than the
     # spare margin each step: stretched along their velocities, the swept boxes hold them for
     # a few steps, and the kept pairs still hold every pair in reach (same contacts, same state
     # to the bit as brute force, which finds the exact pairs every step)
-    kept, fresh = rain("sap"), rain("brute")
-    sweeps = 0
-    for _ in range(120):
-        sweeps += swept(kept)
-        kept.step()
-        fresh.step()
-        assert kept.stats["contacts"] == fresh.stats["contacts"]
-    assert same_state(kept, fresh)
-    assert sweeps <= 50  # 40 measured; 72 with the boxes unstretched
+    stretched = sweeps_and_state(rain("sap"), rain("brute"), 120)
+    assert stretched <= 50  # 40 measured
+    unstretched = sweeps_and_state(rain("sap", 0.0), rain("brute"), 120)
+    assert unstretched >= 65  # 72 measured: the spare margin alone
+    further = sweeps_and_state(rain("sap", 8.0), rain("brute"), 120)
+    assert further < stretched  # 31 measured
 
 
 def test_a_box_is_stretched_on_the_side_its_body_moves_to():
-    # one disc flying left and up: its swept box reaches PREDICT_STEPS steps of travel ahead
+    # one disc flying left and up: its swept box reaches box_prediction steps of travel ahead
     # of it (left and up) and only the margins behind it
     w = World(gravity=(0, 0), dt=0.01)
+    w.settings.box_prediction = 3.0
     w.add_body(Body("floor", type="static", position=(0, -5))).add_shape(Box(1, 1))
     d = w.add_body(Body("d", position=(0, 0), velocity=(-3.0, 2.0)))
     d.add_shape(Circle(0.5))
@@ -125,7 +136,7 @@ def test_a_box_is_stretched_on_the_side_its_body_moves_to():
     spare = ctx["contact_margin"] + FAT_MARGIN + 0.5  # radius, contact margin, spare margin
     assert ctx["look_ahead"] == 0.0  # no speculative reach: the margins are all it grows by
     x, y = 0.0, 0.0  # where the disc was when the step swept
-    ahead = PREDICT_STEPS * 0.01
+    ahead = 3.0 * 0.01
     assert box[2] == pytest.approx(x + spare) and box[1] == pytest.approx(y - spare)
     assert box[0] == pytest.approx(x - spare - 3.0 * ahead)
     assert box[3] == pytest.approx(y + spare + 2.0 * ahead)
