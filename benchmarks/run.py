@@ -385,7 +385,8 @@ def main(argv: list[str] | None = None) -> int:
         "--only",
         nargs="*",
         metavar="NAME",
-        help="only these step benchmarks (print, write nothing)",
+        help="only these step benchmarks, or with no NAME every one, without the render and "
+        "lesson timings (print, write nothing)",
     )
     parser.add_argument(
         "--clock",
@@ -409,6 +410,7 @@ def main(argv: list[str] | None = None) -> int:
         print("SANDBOX_JIT=0: this engine runs uncompiled (plain Python) in this benchmark")
     if BOX2D_MISSING:
         print(f"Box2D skipped: {BOX2D_MISSING} (pip install -e '.[bench]' adds the box2d package)")
+    partial = args.only is not None  # --only, even with no name: print, keep the last results
     cases = [c for c in CASES if not args.only or c.name in args.only]
     print("warming up (compiling) ...", flush=True)
     start = time.perf_counter()
@@ -422,20 +424,20 @@ def main(argv: list[str] | None = None) -> int:
             f"{e.name} {r[f'{e.name}_{args.clock}_ms_per_step'] or '-'}" for e in ENGINES
         )
         print(f"{case.name}: {times} ms per step ({r['status']})", flush=True)
-    if not args.only:
+    if not partial:
         rows.append(bench_gif())
         if not args.quick:
             rows.extend(bench_lessons())
         if args.cold_lessons:
             rows.extend(bench_lessons(cold=True))
 
-    mode = f"{'quick' if args.quick else 'full'} run{' (--only)' if args.only else ''}"
+    mode = f"{'quick' if args.quick else 'full'} run{' (--only)' if partial else ''}"
     title = make_title(mode, args.clock)
     table = format_table(rows, args.clock)
     print()
     print(title)
     print(table)
-    if not args.only:  # a partial run prints only, keeping the last full results
+    if not partial:  # a partial run prints only, keeping the last full results
         write_csv(rows, HERE / "results.csv")
         write_plot(rows, HERE / "results.png", title)
         if not args.no_readme:
