@@ -478,10 +478,10 @@ axes[0].set_ylabel("sweeps so far (count)")
 axes[0].set_title("sweeps: the stretch keeps the pairs longer")
 axes[1].set_ylabel("pairs handed to the narrowphase (count)")
 axes[1].set_title("the price: more pairs out of reach")
-for ax in axes:
+for ax, corner in zip(axes, ("upper left", "lower right"), strict=True):
     ax.set_xlabel("time (s)")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc=corner)
 fig.suptitle("100 discs raining into a box, sweep and prune, 120 steps", fontsize=11)
 fig.tight_layout()
 save_figure(fig, OUT / "kept_pairs.png", dpi=90)
