@@ -146,21 +146,6 @@ def accelerations(model, gravity, state, out, fields: bool) -> None:
 
 
 @njit
-def derivative_ahead(model, gravity, fields: bool, state, k1, out) -> None:
-    """The time derivative at a look-ahead ``state`` into ``out`` (:func:`accelerations`), where
-    ``k1`` is the derivative at the step's start. Without state-dependent forces (``fields``
-    False: no generator, no spring) a = g + F / m and alpha = tau / I are the same at every
-    state, so they are k1's (the very same numbers); only (v, w) comes from ``state``."""
-    if fields:
-        accelerations(model, gravity, state, out, fields)
-        return
-    for i in range(state.shape[0]):
-        d, y = out[i], state[i]
-        d["p"][0], d["p"][1], d["phi"] = y["v"][0], y["v"][1], y["w"]
-        d["v"][0], d["v"][1], d["w"] = k1[i]["v"][0], k1[i]["v"][1], k1[i]["w"]
-
-
-@njit
 def advanced(y, d, h: float, out) -> None:
     """out = y + h d, field by field (a state moved along a derivative for a time h)."""
     for i in range(y.shape[0]):
@@ -176,9 +161,9 @@ def look_ahead(model, gravity, fields: bool, start, k1, y1, out) -> None:
     """The time derivative where RK4 looks, at y + h d, into ``out``; ``start`` = (y, d, h),
     ``k1`` the derivative at the step's start. With state-dependent forces: the state y1 = y +
     h d (:func:`advanced`), then :func:`accelerations` there. Without (``fields`` False) the
-    accelerations are k1's at every state and only the velocities of y + h d matter
-    (:func:`derivative_ahead`), so one pass writes them: the same numbers, three passes fewer
-    per RK4 step."""
+    accelerations are k1's at every state (a = g + F / m and alpha = tau / I, the very same
+    numbers) and only the velocities of y + h d matter, so one pass writes them: the same
+    numbers, three passes fewer per RK4 step."""
     y, d, h = start
     if fields:
         advanced(y, d, h, y1)
@@ -208,7 +193,8 @@ def free_increments(model, gravity, method: int, dt: float, work, fields: bool) 
     """The integrator's increments of one step of free motion for every body, into
     ``work[INCREMENTS]`` (MOTION records holding dp, dv, dphi, dw), with every force evaluated
     where the method looks (the slides' formulas, as :func:`explicit_euler` ... :func:`rk4`
-    above; ``fields``: whether a force depends on the state, :func:`derivative_ahead`);
+    above; ``fields``: whether a force depends on the state: without, a = g + F / m is the
+    same wherever the method looks);
     ``work``: :func:`work_arrays` (nothing is allocated)."""
     bodies = model[0]
     n = bodies.shape[0]
@@ -242,13 +228,16 @@ def free_increments(model, gravity, method: int, dt: float, work, fields: bool) 
                 y1[i]["v"][k] = y[i]["v"][k] + dt * k1[i]["v"][k]
             y1[i]["phi"] = y[i]["phi"] + dt * k1[i]["phi"] + 0.5 * k1[i]["w"] * dt * dt
             y1[i]["w"] = y[i]["w"] + dt * k1[i]["w"]
-        derivative_ahead(model, gravity, fields, y1, k1, k2)
+        a1 = k1  # a' = a(p', v + a dt): without state-dependent forces, a itself
+        if fields:
+            accelerations(model, gravity, y1, k2, fields)
+            a1 = k2
         for i in range(n):
             for k in range(2):
                 inc[i]["p"][k] = y1[i]["p"][k] - y[i]["p"][k]
-                inc[i]["v"][k] = 0.5 * (k1[i]["v"][k] + k2[i]["v"][k]) * dt
+                inc[i]["v"][k] = 0.5 * (k1[i]["v"][k] + a1[i]["v"][k]) * dt
             inc[i]["phi"] = y1[i]["phi"] - y[i]["phi"]
-            inc[i]["w"] = 0.5 * (k1[i]["w"] + k2[i]["w"]) * dt
+            inc[i]["w"] = 0.5 * (k1[i]["w"] + a1[i]["w"]) * dt
         return
     # RK4: k1 = f(y), k2 = f(y + dt/2 k1), k3 = f(y + dt/2 k2), k4 = f(y + dt k3)
     look_ahead(model, gravity, fields, (y, k1, 0.5 * dt), k1, y1, k2)
