@@ -366,10 +366,15 @@ def warm_up(report=print, jobs: int | None = None, lessons: bool = False) -> flo
     relays = [threading.Thread(target=relay, args=(p.stdout, once), daemon=True) for p in others]
     for thread in relays:
         thread.start()
-    done = warm_part(0, jobs, once, lessons)  # with the helpers lessons call on their own
-    for process, thread in zip(others, relays, strict=True):
-        process.wait()
-        thread.join()
+    try:
+        done = warm_part(0, jobs, once, lessons)  # with the helpers lessons call on their own
+        for process, thread in zip(others, relays, strict=True):
+            process.wait()
+            thread.join()
+    except BaseException:  # stopped (a signal to this process alone, Ctrl-C) or failed: the
+        for process in others:  # other shares stop too, not compile on for a minute unowned
+            process.terminate()
+        raise
     if jobs > 1:  # the others' shares: loaded from the cache, or compiled here if one missed them
         warm_families([family for family in worlds(lessons) if family[0] not in done], once)
     if not lessons:

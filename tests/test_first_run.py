@@ -605,3 +605,35 @@ def test_the_server_loads_the_engine_only_for_more_lessons_than_run_at_once(monk
     for chosen in (every[:1], every[:2], every[:3]):
         lessons._run_all(chosen, tmp_path, notebooks=True, jobs=2)
     assert asked == [False, False, True]
+
+
+def test_a_warmup_stopped_by_a_signal_stops_its_other_share(tmp_path):
+    # `kill` of the warmup (the process id in a background warmup's lock) stops the process
+    # compiling the other share too: it went on compiling for a minute, unowned, while a next
+    # run, seeing no warmup, started another. An empty cache, so both are busy compiling
+    env = {k: v for k, v in os.environ.items() if k != "SANDBOX_JIT"}
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
+    parent = subprocess.Popen(
+        [sys.executable, "-m", "sandbox", "warmup", "--quiet", "--jobs", "2"],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
+    if not children.exists():
+        parent.kill()
+        pytest.skip("the process tree is read from /proc (Linux)")
+    deadline = time.monotonic() + 60
+    share = ""
+    while not share and time.monotonic() < deadline:
+        share = children.read_text().strip()
+        time.sleep(0.1)
+    assert share, "the warmup started no second share"
+    time.sleep(3)  # both inside their compiles
+    parent.terminate()
+    assert parent.wait(timeout=60) == 143  # 128 + SIGTERM, as the command line reports it
+    alive = Path(f"/proc/{int(share.split()[0])}")
+    deadline = time.monotonic() + 60
+    while alive.exists() and "Z" not in (alive / "stat").read_text().split()[2]:
+        assert time.monotonic() < deadline, "the other share is still compiling"
+        time.sleep(0.2)
