@@ -373,15 +373,29 @@ def warm_up(report=print, jobs: int | None = None, lessons: bool = False) -> flo
             thread.join()
     except BaseException:  # stopped (a signal to this process alone, Ctrl-C) or failed: the
         for process in others:  # other shares stop too, not compile on for a minute unowned
-            process.terminate()
+            process.kill()  # at once: a signal it could handle waits for LLVM's call to return
+        release_lock(os.getpid())
         raise
     if jobs > 1:  # the others' shares: loaded from the cache, or compiled here if one missed them
         warm_families([family for family in worlds(lessons) if family[0] not in done], once)
     if not lessons:
         mark_warm()
-    if CACHE_FOLDER is not None:  # a background warmup's lock (sandbox.cli.first_run)
-        (CACHE_FOLDER / "warming").unlink(missing_ok=True)
+    release_lock()
     return time.perf_counter() - start
+
+
+def release_lock(pid: int | None = None) -> None:
+    """Remove a background warmup's lock (:mod:`sandbox.cli.first_run`), when ``pid`` is given
+    only if it names that process (a warmup that stops early leaves no lock behind it, which
+    would keep the next run from starting one for ten minutes)."""
+    if CACHE_FOLDER is None:
+        return
+    lock = CACHE_FOLDER / "warming"
+    try:
+        if pid is None or lock.read_text().strip() == str(pid):
+            lock.unlink(missing_ok=True)
+    except OSError:
+        pass
 
 
 class Once:

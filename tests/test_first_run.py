@@ -171,9 +171,12 @@ def test_the_plain_python_note_ends_cleanly_without_a_background_warmup(monkeypa
 
 def test_a_background_warmup_locks_the_cache_with_its_own_process_id(tmp_path, monkeypatch):
     started = []
+    ended = subprocess.run(  # a process id that no longer runs
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    )
 
     class Warmup:
-        pid = 4242
+        pid = os.getpid()  # a process that lives while the test runs
 
         def __init__(self, args, **kw):
             started.append(args)
@@ -182,9 +185,13 @@ def test_a_background_warmup_locks_the_cache_with_its_own_process_id(tmp_path, m
     monkeypatch.setattr(subprocess, "Popen", Warmup)
     assert first_run.start_background_warmup(tmp_path)
     assert started == [[sys.executable, "-m", "sandbox", "warmup", "--quiet"]]
-    assert (tmp_path / first_run.LOCK).read_text() == "4242"
+    assert (tmp_path / first_run.LOCK).read_text() == str(os.getpid())
     assert first_run.start_background_warmup(tmp_path)  # one at a time: the lock is fresh
     assert len(started) == 1
+    if os.name == "posix":  # a fresh lock whose warmup was killed holds no one back
+        (tmp_path / first_run.LOCK).write_text(ended.stdout.strip())
+        assert first_run.start_background_warmup(tmp_path)
+        assert len(started) == 2
 
 
 @pytest.mark.skipif(os.name != "posix", reason="no waiting for a warmup off POSIX")
@@ -630,8 +637,13 @@ def test_a_warmup_stopped_by_a_signal_stops_its_other_share(tmp_path):
         time.sleep(0.1)
     assert share, "the warmup started no second share"
     time.sleep(3)  # both inside their compiles
+    # a lock as a background warmup's (sandbox.cli.first_run), in the cache folder it compiles to
+    lock = tmp_path / "cache" / compile_cache.CACHE_FOLDER.name / "warming"
+    lock.write_text(str(parent.pid))
     parent.terminate()
-    assert parent.wait(timeout=60) == 143  # 128 + SIGTERM, as the command line reports it
+    # 128 + SIGTERM, as the command line reports it (once the compile it is in returns)
+    assert parent.wait(timeout=120) == 143
+    assert not lock.exists()  # or the next run would start no warmup for ten minutes
     alive = Path(f"/proc/{int(share.split()[0])}")
     deadline = time.monotonic() + 60
     while alive.exists() and "Z" not in (alive / "stat").read_text().split()[2]:

@@ -76,7 +76,9 @@ def start_background_warmup(folder) -> bool:
         return False
     lock = folder / LOCK
     try:
-        if lock.exists() and time.time() - lock.stat().st_mtime < STALE:
+        fresh = lock.exists() and time.time() - lock.stat().st_mtime < STALE
+        # one at a time; a lock whose warmup was killed (its process gone) holds nothing
+        if fresh and (os.name != "posix" or running_warmup(folder) is not None):
             return True
         lock.write_text(str(os.getpid()))
     except OSError:
