@@ -1,17 +1,17 @@
 """Text that changes in every frame of an animation, drawn by Pillow rather than matplotlib.
 
-The time in the corner of an animation and the joules beside its energy bars are new strings
-in every frame. matplotlib lays out and draws such a string glyph by glyph in Python: about
-2 to 3 ms for "t = 1.23 s" (matplotlib 3.11), a quarter of a whole frame of bodies. Pillow
-draws the same string with the same font file and the same FreeType in C in about a tenth of
-a millisecond (0.4 ms a label with matplotlib's layout and the compositing). So the matplotlib
-``Text`` artists stay (they hold the string, font, colour, position and alignment, and tests
-read them), but :class:`FrameText` draws them: matplotlib places each string (its layout, as
+The time in the corner of an animation and the joules beside its energy bars are new strings in
+every frame. matplotlib lays out and draws such a string glyph by glyph in Python: about 2 to 3
+ms for "t = 1.23 s" (matplotlib 3.11), a quarter of a whole frame of bodies. Pillow draws the
+same string with the same font file and the same FreeType in C in about a tenth of a millisecond
+(0.4 ms a label with matplotlib's layout and the compositing). So the matplotlib ``Text``
+artists stay (they hold the string, font, colour, position and alignment, and tests read them),
+but :class:`FrameText` draws them: matplotlib places each string (its layout, as
 :meth:`matplotlib.text.Text.draw` has it), Pillow renders its glyphs from that pen origin, and
-the pixels are laid over the frame with the "over" operator, C = C_text a + C_frame (1 - a),
-as Agg lays its own glyphs (:func:`sandbox.legend_layer.lay_over`, as for the legend). The glyphs' edges can differ from
-matplotlib's by FreeType's hinting; their ink lands on the same rows and columns to within a
-pixel, its centre within half a pixel (tests/test_frame_text.py).
+the pixels are laid over the frame with the "over" operator, C = C_text a + C_frame (1 - a), as
+Agg lays its own glyphs (:func:`sandbox.legend_layer.lay_over`, as for the legend). The glyphs'
+edges can differ from matplotlib's by FreeType's hinting; their ink lands on the same rows and
+columns to within a pixel, its centre within half a pixel (tests/test_frame_text.py).
 """
 
 from __future__ import annotations

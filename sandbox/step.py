@@ -150,11 +150,11 @@ def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     is too small (nothing else changed).
 
     The boxes are swept grown by :data:`FAT_MARGIN` more than the contact margin and stretched
-    along their velocities by ``settings.box_prediction`` steps of travel, and last step's pairs are kept while
-    every shape's box stays within the box it was swept with (:func:`boxes_hold`, as Box2D's
-    fat AABBs): any two shapes whose boxes overlap now had
-    overlapping swept boxes, so the kept pairs hold all of them, and the narrowphase leaves
-    out the rest (out of reach). A pile at rest sweeps again only when something moved."""
+    along their velocities by ``settings.box_prediction`` steps of travel, and last step's pairs
+    are kept while every shape's box stays within the box it was swept with (:func:`boxes_hold`,
+    as Box2D's fat AABBs): any two shapes whose boxes overlap now had overlapping swept boxes,
+    so the kept pairs hold all of them, and the narrowphase leaves out the rest (out of reach).
+    A pile at rest sweeps again only when something moved."""
     ctx = context[0]
     m = shapes.shape[0]
     margin, ahead = ctx["contact_margin"], ctx["look_ahead"]

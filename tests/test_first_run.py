@@ -638,7 +638,7 @@ def test_a_warmup_stopped_by_a_signal_stops_its_other_share(tmp_path):
     assert share, "the warmup started no second share"
     time.sleep(3)  # both inside their compiles
     # a lock as a background warmup's (sandbox.cli.first_run), in the cache folder it compiles to
-    lock = tmp_path / "cache" / compile_cache.CACHE_FOLDER.name / "warming"
+    lock = tmp_path / "cache" / compile_cache.CACHE_FOLDER.name / first_run.LOCK
     lock.write_text(str(parent.pid))
     parent.terminate()
     # 128 + SIGTERM, as the command line reports it (once the compile it is in returns)

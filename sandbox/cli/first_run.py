@@ -76,9 +76,11 @@ def start_background_warmup(folder) -> bool:
         return False
     lock = folder / LOCK
     try:
-        fresh = lock.exists() and time.time() - lock.stat().st_mtime < STALE
-        # one at a time; a lock whose warmup was killed (its process gone) holds nothing
-        if fresh and (os.name != "posix" or running_warmup(folder) is not None):
+        if os.name == "posix":  # one at a time; a lock whose warmup was killed holds nothing
+            busy = running_warmup(folder) is not None
+        else:  # no asking whether a process lives there: a fresh lock is a running warmup
+            busy = lock.exists() and time.time() - lock.stat().st_mtime < STALE
+        if busy:
             return True
         lock.write_text(str(os.getpid()))
     except OSError:
