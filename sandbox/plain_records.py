@@ -27,15 +27,13 @@ class Records(np.ndarray):
     """A structured array whose elements are :class:`Record` (see the module)."""
 
     def __getitem__(self, index):
-        if type(index) in INTEGERS or isinstance(index, np.integer):
-            items = self.__dict__.get("_items")
-            if items is None:
-                items = self._items = elements(self)
-            return items[index]
+        if index.__class__ is int or isinstance(index, np.integer):
+            try:
+                return self._items[index]
+            except AttributeError:  # the first element read: make them all
+                self._items = elements(self)
+                return self._items[index]
         return super().__getitem__(index)
-
-
-INTEGERS = frozenset({int, np.int64, np.int32})  # index types checked first (the common ones)
 
 
 def elements(records: Records) -> list:
@@ -49,13 +47,17 @@ def elements(records: Records) -> list:
 
 def field_views(records: np.ndarray) -> dict:
     """Each field of ``records`` as a container of its own over the same memory, indexed as
-    the records are: records as :class:`Records`; numbers as a ``memoryview`` (it reads and
+    the records are: records as :class:`Records`, and records within each record (a contact's
+    points) as a list of :class:`Record` per record, since a list is indexed sooner; numbers as a ``memoryview`` (it reads and
     writes Python numbers, several times faster than numpy's scalars, and with the same values);
     a vector per record (a point, a velocity) as a list of ``memoryview``, one per record."""
     views = {}
     for name in records.dtype.names:
         view = np.ndarray.__getitem__(records, name)
-        if view.dtype.names:
+        if view.dtype.names and view.ndim == 2:  # records in each record (a contact's points)
+            columns = [field_views(view[:, j]) for j in range(view.shape[1])]
+            views[name] = [[Record(column, i) for column in columns] for i in range(len(view))]
+        elif view.dtype.names:
             views[name] = view.view(Records)
         elif view.ndim == 1:
             views[name] = memoryview(view.view(np.ndarray))
@@ -90,7 +92,7 @@ def shown(value) -> str:
     """A field's value as a debugger shows it: numbers and vectors as numbers, records by count."""
     if isinstance(value, memoryview):
         return repr(value.tolist())
-    if isinstance(value, Records):
+    if isinstance(value, Records | list):
         return f"<{len(value)} records>"
     return repr(value)
 
