@@ -48,9 +48,10 @@ def elements(records: Records) -> list:
 def field_views(records: np.ndarray) -> dict:
     """Each field of ``records`` as a container of its own over the same memory, indexed as
     the records are: records as :class:`Records`, and records within each record (a contact's
-    points) as a list of :class:`Record` per record, since a list is indexed sooner; numbers as a ``memoryview`` (it reads and
-    writes Python numbers, several times faster than numpy's scalars, and with the same values);
-    a vector per record (a point, a velocity) as a list of ``memoryview``, one per record."""
+    points) as a list of :class:`Record` per record, since a list is indexed sooner; numbers
+    as a ``memoryview`` (it reads and writes Python numbers, several times faster than numpy's
+    scalars, and with the same values); a vector per record (a point, a velocity) as a list of
+    ``memoryview``, one per record."""
     views = {}
     for name in records.dtype.names:
         view = np.ndarray.__getitem__(records, name)

@@ -4,9 +4,9 @@ Compiling the kernels a scene needs takes 40 to 50 s the first time (every kerne
 warmup``, one to two minutes; numba caches the machine code for later runs). For a small scene,
 running the same functions uncompiled (plain Python, ``SANDBOX_JIT=0``, on the record view of
 :mod:`sandbox.plain_records`) finishes long before that: drop's 240 steps take 0.4 s and the
-pyramid's 120 steps 5 to 8 s. So when the compile cache is not warm (``sandbox warmup`` has not run)
-and the scene is small, the command runs uncompiled, says so in one line, and starts ``sandbox
-warmup`` in the background (at a low priority, one at a time) so that the next runs are
+pyramid's 120 steps 6 to 7 s. So when the compile cache is not warm (``sandbox warmup`` has
+not run) and the scene is small, the command runs uncompiled, says so in one line, and starts
+``sandbox warmup`` in the background (at a low priority, one at a time) so that the next runs are
 compiled. A larger scene compiles in the foreground, with a notice and a progress bar on a
 terminal.
 
@@ -24,7 +24,7 @@ import time
 from sandbox.cli.common import note
 
 # bodies x steps up to which an uncompiled run is done sooner than compiling. Measured on the
-# project's 2-core machine: uncompiled, the bundled pyramid (56 boxes) takes 5 to 8 s for 120
+# project's 2-core machine: uncompiled, the bundled pyramid (56 boxes) takes 6 to 7 s for 120
 # steps and 13 s for 300 (0.8 ms per body and step), rain (103 circles) 10 s for 300 (0.3 ms),
 # drop (2 bodies) 0.4 s for 240; compiling and running takes 50 to 54 s. At the bound, boxes
 # take about 30 s uncompiled, still well under the compile; every bundled scene at the default
