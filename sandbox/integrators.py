@@ -122,20 +122,15 @@ CODES = {name: code for code, name in enumerate(NAMES)}
 
 
 @njit
-def accelerations(model, gravity, state, out, fields: bool) -> None:
+def accelerations(model, gravity, state, out) -> None:
     """The time derivative of ``state`` (MOTION records) into ``out``: (v, a, w, alpha) with
     a = g + F / m and alpha = tau / I for dynamic bodies (zero for the others), F and tau every
-    force at that state (:func:`sandbox.forces.accumulate_forces`); without ``fields`` (no
-    generator, no spring) that is each body's accumulated force and torque of the step, read
-    in the same pass. ``model``: the world's (bodies, shapes, vertices, joints, generators)
-    records."""
+    force at that state (:func:`sandbox.forces.accumulate_forces`). ``model``: the world's
+    (bodies, shapes, vertices, joints, generators) records."""
     bodies, shapes, vertices, joints, generators = model
-    if fields:
-        accumulate_forces(bodies, shapes, vertices, joints, generators, state, gravity, out)
+    accumulate_forces(bodies, shapes, vertices, joints, generators, state, gravity, out)
     for i in range(bodies.shape[0]):
         b, d = bodies[i], out[i]
-        if not fields:  # all that accumulate_forces would find
-            d["v"][0], d["v"][1], d["w"] = b["force"][0], b["force"][1], b["torque"]
         d["p"][0], d["p"][1], d["phi"] = state[i]["v"][0], state[i]["v"][1], state[i]["w"]
         if b["kind"] == DYNAMIC:
             d["v"][0] = gravity[0] + d["v"][0] * b["inv_mass"]
@@ -157,24 +152,12 @@ def advanced(y, d, h: float, out) -> None:
 
 
 @njit
-def look_ahead(model, gravity, fields: bool, start, k1, y1, out) -> None:
-    """The time derivative where RK4 looks, at y + h d, into ``out``; ``start`` = (y, d, h),
-    ``k1`` the derivative at the step's start. With state-dependent forces: the state y1 = y +
-    h d (:func:`advanced`), then :func:`accelerations` there. Without (``fields`` False) the
-    accelerations are k1's at every state (a = g + F / m and alpha = tau / I, the very same
-    numbers) and only the velocities of y + h d matter, so one pass writes them: the same
-    numbers, three passes fewer per RK4 step."""
+def look_ahead(model, gravity, start, y1, out) -> None:
+    """The time derivative where RK4 looks, at y + h d, into ``out``; ``start`` = (y, d, h):
+    the state y1 = y + h d (:func:`advanced`), then :func:`accelerations` there."""
     y, d, h = start
-    if fields:
-        advanced(y, d, h, y1)
-        accelerations(model, gravity, y1, out, fields)
-        return
-    for i in range(y.shape[0]):
-        for k in range(2):
-            out[i]["p"][k] = y[i]["v"][k] + h * d[i]["v"][k]
-            out[i]["v"][k] = k1[i]["v"][k]
-        out[i]["phi"] = y[i]["w"] + h * d[i]["w"]
-        out[i]["w"] = k1[i]["w"]
+    advanced(y, d, h, y1)
+    accelerations(model, gravity, y1, out)
 
 
 # the rows of the work arrays of :func:`free_increments` (one MOTION record per body in each),
@@ -189,13 +172,12 @@ def work_arrays(n: int) -> np.ndarray:
 
 
 @njit
-def free_increments(model, gravity, method: int, dt: float, work, fields: bool) -> None:
+def free_increments(model, gravity, method: int, dt: float, work) -> None:
     """The integrator's increments of one step of free motion for every body, into
     ``work[INCREMENTS]`` (MOTION records holding dp, dv, dphi, dw), with every force evaluated
     where the method looks (the slides' formulas, as :func:`explicit_euler` ... :func:`rk4`
-    above; ``fields``: whether a force depends on the state: without, a = g + F / m is the
-    same wherever the method looks);
-    ``work``: :func:`work_arrays` (nothing is allocated)."""
+    above), for a world where some force depends on the state (without, every method takes
+    :func:`integrate_constant`); ``work``: :func:`work_arrays` (nothing is allocated)."""
     bodies = model[0]
     n = bodies.shape[0]
     y, k1, k2, k3, k4 = work[STATE], work[K1], work[K2], work[K3], work[K4]
@@ -204,7 +186,7 @@ def free_increments(model, gravity, method: int, dt: float, work, fields: bool) 
         b = bodies[i]
         y[i]["p"][0], y[i]["p"][1], y[i]["phi"] = b["com"][0], b["com"][1], b["angle"]
         y[i]["v"][0], y[i]["v"][1], y[i]["w"] = b["vel"][0], b["vel"][1], b["omega"]
-    accelerations(model, gravity, y, k1, fields)
+    accelerations(model, gravity, y, k1)
     if method == EXPLICIT_EULER:  # p' = p + v dt, v' = v + a dt, both from the old state
         for i in range(n):
             for k in range(2):
@@ -228,21 +210,18 @@ def free_increments(model, gravity, method: int, dt: float, work, fields: bool) 
                 y1[i]["v"][k] = y[i]["v"][k] + dt * k1[i]["v"][k]
             y1[i]["phi"] = y[i]["phi"] + dt * k1[i]["phi"] + 0.5 * k1[i]["w"] * dt * dt
             y1[i]["w"] = y[i]["w"] + dt * k1[i]["w"]
-        a1 = k1  # a' = a(p', v + a dt): without state-dependent forces, a itself
-        if fields:
-            accelerations(model, gravity, y1, k2, fields)
-            a1 = k2
+        accelerations(model, gravity, y1, k2)  # a' = a(p', v + a dt)
         for i in range(n):
             for k in range(2):
                 inc[i]["p"][k] = y1[i]["p"][k] - y[i]["p"][k]
-                inc[i]["v"][k] = 0.5 * (k1[i]["v"][k] + a1[i]["v"][k]) * dt
+                inc[i]["v"][k] = 0.5 * (k1[i]["v"][k] + k2[i]["v"][k]) * dt
             inc[i]["phi"] = y1[i]["phi"] - y[i]["phi"]
-            inc[i]["w"] = 0.5 * (k1[i]["w"] + a1[i]["w"]) * dt
+            inc[i]["w"] = 0.5 * (k1[i]["w"] + k2[i]["w"]) * dt
         return
     # RK4: k1 = f(y), k2 = f(y + dt/2 k1), k3 = f(y + dt/2 k2), k4 = f(y + dt k3)
-    look_ahead(model, gravity, fields, (y, k1, 0.5 * dt), k1, y1, k2)
-    look_ahead(model, gravity, fields, (y, k2, 0.5 * dt), k1, y1, k3)
-    look_ahead(model, gravity, fields, (y, k3, dt), k1, y1, k4)
+    look_ahead(model, gravity, (y, k1, 0.5 * dt), y1, k2)
+    look_ahead(model, gravity, (y, k2, 0.5 * dt), y1, k3)
+    look_ahead(model, gravity, (y, k3, dt), y1, k4)
     for i in range(n):  # y' - y = dt/6 (k1 + 2 k2 + 2 k3 + k4)
         for k in range(2):
             inc[i]["p"][k] = (
@@ -272,17 +251,33 @@ def has_fields(joints, generators) -> bool:
     return False
 
 
+@njit(inline="always")
+def constant_increments(method: int, v: float, a: float, dt: float) -> tuple[float, float]:
+    """(dx, dv) of one coordinate over a step under a constant acceleration ``a``: the slides'
+    formulas of :func:`explicit_euler` ... :func:`rk4` above, with a(p, v) = a wherever the
+    method looks (RK4: k2 and k3 look at v + a dt / 2, k4 at v + a dt)."""
+    if method == EXPLICIT_EULER:
+        return v * dt, a * dt
+    if method == SEMI_IMPLICIT_EULER:
+        dv = a * dt
+        return (v + dv) * dt, dv
+    if method == VERLET:
+        return v * dt + 0.5 * a * dt * dt, 0.5 * (a + a) * dt
+    v2, v3, v4 = v + 0.5 * dt * a, v + 0.5 * dt * a, v + dt * a
+    return dt / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4), dt / 6.0 * (a + 2.0 * a + 2.0 * a + a)
+
+
 @njit
-def euler_velocity(b, gravity, dt: float, explicit: bool) -> None:
-    """One body's Euler step under its constant acceleration a = g + F / m, alpha = tau / I:
-    v' = v + a dt; the free move is v dt (explicit, the slides' table) or v' dt."""
+def constant_velocity(b, gravity, dt: float, method: int) -> None:
+    """One body's step under its constant acceleration a = g + F / m, alpha = tau / I
+    (:func:`constant_increments`): v' = v + dv, and the free move dx."""
     for k in range(2):
-        v0 = b["vel"][k]
-        b["vel"][k] = v0 + (gravity[k] + b["force"][k] * b["inv_mass"]) * dt
-        b["free_move"][k] = (v0 if explicit else b["vel"][k]) * dt
-    w0 = b["omega"]
-    b["omega"] = w0 + b["torque"] * b["inv_moment"] * dt
-    b["free_turn"] = (w0 if explicit else b["omega"]) * dt
+        a = gravity[k] + b["force"][k] * b["inv_mass"]
+        b["free_move"][k], dv = constant_increments(method, b["vel"][k], a, dt)
+        b["vel"][k] += dv
+    alpha = b["torque"] * b["inv_moment"]
+    b["free_turn"], dw = constant_increments(method, b["omega"], alpha, dt)
+    b["omega"] += dw
 
 
 @njit
@@ -308,16 +303,17 @@ def clear_forces(bodies) -> None:
 
 
 @njit
-def integrate_euler(bodies, context, dt: float) -> None:
-    """The velocity stage for the two Euler methods with no state-dependent force (a constant
-    acceleration over the step, :func:`euler_velocity`): the one-call steps use this one, so
-    they do not compile the look-ahead integrators and the force fields."""
+def integrate_constant(bodies, context, dt: float) -> None:
+    """The velocity stage when no force depends on the state: the acceleration is the same
+    wherever a method looks, so every method is worked out body by body in one pass
+    (:func:`constant_velocity`), without the work arrays (one-call steps of such a world do
+    not compile the force fields)."""
     ctx = context[0]
-    gravity, explicit = ctx["gravity"], ctx["integrator"] == EXPLICIT_EULER
+    gravity, method = ctx["gravity"], ctx["integrator"]
     for i in range(bodies.shape[0]):
         b = bodies[i]
         if b["kind"] == DYNAMIC:
-            euler_velocity(b, gravity, dt, explicit)
+            constant_velocity(b, gravity, dt, method)
         else:
             still_or_kinematic(b, dt)
         b["free_vel"][0], b["free_vel"][1], b["free_omega"] = b["vel"][0], b["vel"][1], b["omega"]
@@ -338,20 +334,15 @@ def integrate_velocities(model, context, dt: float, work) -> None:
     """The velocity stage over a time ``dt`` (the step, or a substep of it): each dynamic
     body's velocity gets the integrator's increment, every force evaluated where the method
     looks (:func:`free_increments`, in the :func:`work_arrays` ``work``); its free-motion move
-    is remembered for :func:`plan_motion`. The Euler methods without state-dependent forces
-    take :func:`integrate_euler`; the world then passes ``work=None``, and a compiled step
-    leaves the look-ahead integrators and the force fields out (numba drops the branch)."""
+    is remembered for :func:`plan_motion`. Without state-dependent forces every method takes
+    :func:`integrate_constant`; the world then passes ``work=None``, and a compiled step
+    leaves the passes over the work arrays and the force fields out (numba drops the branch)."""
     ctx = context[0]
     bodies, _, _, joints, generators = model
-    method = ctx["integrator"]
-    if work is None:
-        integrate_euler(bodies, context, dt)
+    if work is None or not has_fields(joints, generators):
+        integrate_constant(bodies, context, dt)
         return
-    fields = has_fields(joints, generators)
-    if method <= SEMI_IMPLICIT_EULER and not fields:
-        integrate_euler(bodies, context, dt)
-        return
-    free_increments(model, ctx["gravity"], method, dt, work, fields)
+    free_increments(model, ctx["gravity"], ctx["integrator"], dt, work)
     inc = work[INCREMENTS]
     for i in range(bodies.shape[0]):
         b = bodies[i]

@@ -28,8 +28,9 @@ world (sweep and prune, the iterative or soft solver, no continuous collision; a
 and force generator); each compiled call from Python costs about a microsecond, as much as a
 small world's whole step. Both run the very same stage functions in the same order, so they
 give bit-identical results (``tests/test_step.py``, ``tests/test_step_integrators.py``). The
-look-ahead integrators write into work arrays the world keeps (``work``); an Euler method
-without state-dependent forces gets ``work=None`` and its compiled step leaves them out.
+look-ahead integrators write into work arrays the world keeps (``work``) where a force depends
+on the state; without such forces every integrator is worked out body by body, the world passes
+``work=None``, and its compiled step leaves the passes over them out.
 """
 
 from __future__ import annotations
@@ -306,7 +307,7 @@ def fast_step(
 ) -> int:
     """The stages of :func:`staged_step` in one compiled call (sweep and prune, the iterative
     solver, no continuous collision; any integrator and forces, with ``work`` the integrator's
-    work arrays, or None for an Euler method without state-dependent forces: see
+    work arrays, or None without state-dependent forces: see
     :func:`sandbox.integrators.integrate_velocities`). Returns 0, minus the pair rows
     needed when ``pairs`` is too small (nothing changed: grow the buffers and call again), or 1
     plus the index of a body whose state stopped being finite."""

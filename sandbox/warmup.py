@@ -104,7 +104,7 @@ def step(w: World, steps: int = 4, staged: bool = False) -> None:
 
 # the families the bundled lessons step: every lesson ran from a cache with only these (and the
 # helpers) compiled, and compiled nothing itself; the others (the broadphases' own steps, verlet
-# and rk4 with forces, the soft step with forces, a lone verlet body) took a two-core warmup
+# and rk4 with forces, the soft step with forces, a lone verlet body with drag) took a two-core warmup
 # from 53.5 s to 62 s
 LESSON_FAMILIES = (
     "iterative solver",
@@ -150,10 +150,13 @@ def every_world():
     fast.body("disc").velocity = (0.0, -300.0)
     yield "continuous collision", fast, False
     yield "soft solver and continuous collision", with_bullet(sample_world(solver="soft")), False
-    for integrator in ("semi_implicit_euler", "verlet"):
-        lone = World(integrator=integrator)
-        lone.add_body(Body("ball")).add_shape(Circle(0.5))
-        yield f"one body, {integrator}", lone, False
+    lone = World(integrator="semi_implicit_euler")
+    lone.add_body(Body("ball")).add_shape(Circle(0.5))
+    yield "one body, semi_implicit_euler", lone, False
+    lone = World(integrator="verlet")  # a force field: the one-body step with work arrays
+    lone.add_body(Body("ball")).add_shape(Circle(0.5))
+    lone.add_force(Drag(linear=0.1))
+    yield "one body, verlet and drag", lone, False
 
 
 def late_stages() -> None:

@@ -34,8 +34,6 @@ from sandbox.step import fast_step, free_step, soft_step, staged_step
 from sandbox.world_building import Building
 from sandbox.world_measures import Measures
 
-_EULERS = ("semi_implicit_euler", "explicit_euler")
-
 
 class WorldArrays(NamedTuple):
     """Everything a step reads and writes, for :mod:`sandbox.step`."""
@@ -48,7 +46,7 @@ class WorldArrays(NamedTuple):
     generators: np.ndarray
     buffers: ContactBuffers
     context: np.ndarray
-    work: np.ndarray | None  # the integrator's work arrays (None: an Euler method, no fields)
+    work: np.ndarray | None  # the integrator's work arrays (None: no state-dependent force)
 
 
 def _field(name: str) -> property:
@@ -270,8 +268,8 @@ class World(Building, Measures):
         self._fast = (
             s.broadphase == "sap" and s.solver in ("iterative", "soft") and not self.has_ccd
         )
-        if s.integrator in _EULERS and not fields:
-            self._work = None  # v += a dt with a constant a: no look-ahead, nothing to keep
+        if not fields:
+            self._work = None  # a constant a wherever a method looks: worked out body by body
         elif self._work is None or self._work.shape[1] != n:
             self._work = work_arrays(n)
         fill_context(self.context[0], self.settings, self.gravity, dt)

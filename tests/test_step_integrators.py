@@ -8,7 +8,7 @@ from step_paths import fast_and_staged, same_state
 
 from sandbox import Body, Box, Circle, World
 from sandbox.forces import Buoyancy, ConstantForce, Drag
-from sandbox.integrators import INCREMENTS
+from sandbox.integrators import INCREMENTS, INTEGRATORS, constant_acceleration
 from sandbox.joints.spring import SpringJoint
 
 LOOK_AHEAD = ("verlet", "rk4")
@@ -80,10 +80,28 @@ def test_look_ahead_without_forces_is_exact_for_constant_acceleration(integrator
     assert b.angle == pytest.approx(1.5 * t + 0.5 * alpha * t * t, abs=1e-12)
 
 
+@pytest.mark.parametrize("integrator", ["explicit_euler", "semi_implicit_euler", *LOOK_AHEAD])
+def test_without_fields_every_method_is_the_slides_function_to_the_bit(integrator):
+    # no force depends on the state: each method is worked out body by body
+    # (integrators.integrate_constant) with the very operations of the slides' function above it
+    # (integrators.explicit_euler ... rk4) given a constant acceleration: equal to the bit
+    w = World(gravity=(0, -9.81), dt=1 / 60, integrator=integrator)
+    w.add_body(Body("b", velocity=(2.0, 5.0), force=(1.0, 0.5))).add_shape(Circle(0.3))
+    a = np.array([0.0, -9.81]) + np.array([1.0, 0.5]) * w.inv_mass[0]
+    p, v = w.com[0].copy(), w.vel[0].copy()
+    step = INTEGRATORS[integrator]
+    for _ in range(60):
+        w.step()
+        dp, dv, _, _ = step(p, v, 0.0, 0.0, constant_acceleration(a), w.dt)
+        p, v = p + dp, v + dv
+    assert w._work is None
+    assert w.com[0].tobytes() == p.tobytes() and w.vel[0].tobytes() == v.tobytes()
+
+
 def test_work_arrays_are_kept_between_steps():
-    # the look-ahead integrators write into arrays the world keeps (no allocation per step);
-    # they grow with the bodies; the Euler methods without state-dependent forces need none
-    # (and their compiled step leaves the look-ahead integrators out)
+    # the integrators write into arrays the world keeps where a force depends on the state (no
+    # allocation per step); they grow with the bodies; without such forces no method needs them
+    # (and the compiled step leaves the passes over them out)
     w = fields_pile("rk4")
     w.step()
     work = w._work
@@ -94,7 +112,7 @@ def test_work_arrays_are_kept_between_steps():
     w.add_body(Body("late", position=(4.0, 3.0))).add_shape(Circle(0.2))
     w.step()
     assert w._work.shape == (INCREMENTS + 1, len(w.bodies))
-    plain = World(integrator="semi_implicit_euler")
+    plain = World(integrator="rk4")
     plain.add_body(Body("b")).add_shape(Circle(0.2))
     plain.step()
     assert plain._work is None
