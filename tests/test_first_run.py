@@ -5,6 +5,7 @@ marks the cache warm."""
 import csv
 import io
 import os
+import re
 import subprocess
 import sys
 import time
@@ -127,8 +128,8 @@ def test_compile_notice_on_a_terminal(monkeypatch):
 
 
 def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
-    # a one-call step's compile: a bar of the kernels it compiles from an empty cache (232 for
-    # the iterative solver's, 229 for the soft step's); anything else: a count, no length
+    # a one-call step's compile: a bar of the kernels it compiles from an empty cache (225 for
+    # the iterative solver's, 224 for the soft step's); anything else: a count, no length
     from types import SimpleNamespace
 
     from sandbox import jit
@@ -143,8 +144,8 @@ def test_the_compile_bar_is_as_long_as_the_step_it_compiles(monkeypatch):
 
     monkeypatch.setattr(jit.sys, "stderr", Terminal())
     for name, total in (
-        ("fast_step", 232),
-        ("soft_step", 229),
+        ("fast_step", 225),
+        ("soft_step", 224),
         ("place_bodies", None),
         (None, None),
     ):
@@ -530,7 +531,9 @@ def test_the_wait_shows_its_line_and_the_time_so_far_redrawn_every_tick():
         time.sleep(0.3)
     drawn = [d for d in screen.getvalue().split("\r") if d.strip()]
     assert len(drawn) >= 3  # drawn when it starts, then at least twice by the ticker
-    assert all(d == "waiting for the background warmup [00:00]" for d in drawn)
+    # the time so far: 00:00 unless a busy machine holds the 0.3 s up past a second
+    shown = r"waiting for the background warmup \[00:0\d\]"
+    assert all(re.fullmatch(shown, d) for d in drawn), drawn
 
 
 def test_a_first_run_starts_the_lessons_once_the_warmup_is_done(monkeypatch, tmp_path):
