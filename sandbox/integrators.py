@@ -256,28 +256,28 @@ def constant_increments(method: int, v: float, a: float, dt: float) -> tuple[flo
     """(dx, dv) of one coordinate over a step under a constant acceleration ``a``: the slides'
     formulas of :func:`explicit_euler` ... :func:`rk4` above, with a(p, v) = a wherever the
     method looks (RK4: k2 and k3 look at v + a dt / 2, k4 at v + a dt)."""
-    if method == EXPLICIT_EULER:
-        return v * dt, a * dt
-    if method == SEMI_IMPLICIT_EULER:
+    if method == SEMI_IMPLICIT_EULER:  # the default first
         dv = a * dt
         return (v + dv) * dt, dv
+    if method == EXPLICIT_EULER:
+        return v * dt, a * dt
     if method == VERLET:
         return v * dt + 0.5 * a * dt * dt, 0.5 * (a + a) * dt
     v2, v3, v4 = v + 0.5 * dt * a, v + 0.5 * dt * a, v + dt * a
     return dt / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4), dt / 6.0 * (a + 2.0 * a + 2.0 * a + a)
 
 
-@njit
+@njit(inline="always")
 def constant_velocity(b, gravity, dt: float, method: int) -> None:
     """One body's step under its constant acceleration a = g + F / m, alpha = tau / I
     (:func:`constant_increments`): v' = v + dv, and the free move dx."""
     for k in range(2):
-        a = gravity[k] + b["force"][k] * b["inv_mass"]
-        b["free_move"][k], dv = constant_increments(method, b["vel"][k], a, dt)
-        b["vel"][k] += dv
-    alpha = b["torque"] * b["inv_moment"]
-    b["free_turn"], dw = constant_increments(method, b["omega"], alpha, dt)
-    b["omega"] += dw
+        v, a = b["vel"][k], gravity[k] + b["force"][k] * b["inv_mass"]
+        dx, dv = constant_increments(method, v, a, dt)
+        b["vel"][k], b["free_move"][k] = v + dv, dx
+    w, alpha = b["omega"], b["torque"] * b["inv_moment"]
+    dphi, dw = constant_increments(method, w, alpha, dt)
+    b["omega"], b["free_turn"] = w + dw, dphi
 
 
 @njit
