@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from sandbox.copying import copy_fields
 from sandbox.vec2 import Vec2
 
 DYNAMIC, STATIC, KINEMATIC = 0, 1, 2
@@ -86,6 +87,9 @@ class Body:
             "angular_velocity": float(angular_velocity),
             "ccd": bool(ccd),
         }
+
+    def __deepcopy__(self, memo: dict) -> Body:
+        return copy_fields(self, memo)  # numbers and names shared: see sandbox.copying
 
     # --- building -----------------------------------------------------------------------------
     def add_shape(self, shape):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 import sandbox.geometry as geometry
+from sandbox.copying import copy_fields
 
 
 def _check(owner: str, kind: str, values: dict) -> dict:
@@ -40,6 +41,9 @@ class Shape:
         self.restitution = float(restitution)
         self.friction = float(friction)
         self.body = None  # set by Body.add_shape
+
+    def __deepcopy__(self, memo: dict) -> Shape:
+        return copy_fields(self, memo)  # numbers shared: see sandbox.copying
 
     def mass_properties(self):
         """:class:`sandbox.mass.MassProperties` in the body-origin frame."""
