@@ -19,6 +19,7 @@ from sandbox.body import DYNAMIC, Body
 from sandbox.compile_cache import step_kernel
 from sandbox.contact import ContactBuffers, Manifolds, find_contacts
 from sandbox.context import fill_context
+from sandbox.copying import copy_fields
 from sandbox.energy_growth import energy_limit
 from sandbox.errors import SimulationError
 from sandbox.forces import ForceGenerator
@@ -417,6 +418,17 @@ class World(Building, Measures):
         from sandbox.scene_export import world_to_scene
 
         return world_to_scene(self)
+
+    def __deepcopy__(self, memo: dict) -> World:
+        """``copy.deepcopy(world)``: every part copied (:mod:`sandbox.copying`); the copy
+        watches its own settings (a copied Settings carries no observer), and the way a step
+        runs is chosen again for its own arrays (the original's is bound to the original's:
+        stepping the copy moved the original's bodies)."""
+        new = copy_fields(self, memo)
+        new._watch_settings()
+        if new._run is not None:
+            new._choose_path()
+        return new
 
     def __repr__(self) -> str:
         return f"World({self.name!r}, {len(self.bodies)} bodies, t={self.time:.4f})"

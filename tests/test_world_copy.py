@@ -42,3 +42,22 @@ def test_a_copy_is_the_same_graph_and_owns_its_parts():
     c.step()
     assert tuple(w.body("b2").velocity) == (0.0, 0.0) and len(w.bodies) == 5
     assert w.steps == 0 and c.steps == 1
+
+
+def test_a_copy_of_a_stepped_world_steps_on_its_own():
+    # the way a step runs is bound to a world's arrays: the copy chooses its own (before, a
+    # stepped copy stepped the original's bodies), so original and copy go on alike, apart
+    w = small_pile()
+    for _ in range(20):
+        w.step()
+    c = copy.deepcopy(w)
+    before = w.com.copy()
+    c.step()
+    assert np.array_equal(w.com, before) and w.steps == 20 and c.steps == 21
+    w.step()
+    for _ in range(30):
+        w.step()
+        c.step()
+    assert w.com.tobytes() == c.com.tobytes() and w.vel.tobytes() == c.vel.tobytes()
+    c.settings.iterations = 3  # the copy's settings tell the copy, not the original
+    assert c._dirty and not w._dirty and w.settings.iterations != 3
