@@ -414,20 +414,18 @@ save_figure(fig, OUT / "lattice_sweep.png", dpi=90)
 # the exact pairs every step.
 
 # %%
-import json  # noqa: E402
-
 import sandbox  # noqa: E402
 from sandbox.lessonkit import scene_path  # noqa: E402
 
 PREDICTIONS = (0.0, 2.0, 8.0)  # settings.box_prediction (steps of travel)
 RAIN_STEPS = 180
-RAIN = scene_path("rain").read_text()  # the bundled example scene (`sandbox simulate rain`)
+RAIN = scene_path("rain")  # the bundled example scene (`sandbox simulate rain`)
 
 
 def rain_world(broadphase: str, prediction: float = 2.0) -> sandbox.World:
     """The bundled rain (100 discs of radius 0.2 m falling 10 m into an open box) with the
     ``broadphase`` and ``settings.box_prediction`` given."""
-    w = sandbox.load_scene(json.loads(RAIN))
+    w = sandbox.load_scene(RAIN)
     w.settings.broadphase = broadphase
     w.settings.box_prediction = prediction
     return w

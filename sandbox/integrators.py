@@ -335,11 +335,11 @@ def integrate_velocities(model, context, dt: float, work) -> None:
     body's velocity gets the integrator's increment, every force evaluated where the method
     looks (:func:`free_increments`, in the :func:`work_arrays` ``work``); its free-motion move
     is remembered for :func:`plan_motion`. Without state-dependent forces every method takes
-    :func:`integrate_constant`; the world then passes ``work=None``, and a compiled step
-    leaves the passes over the work arrays and the force fields out (numba drops the branch)."""
-    ctx = context[0]
-    bodies, _, _, joints, generators = model
-    if work is None or not has_fields(joints, generators):
+    :func:`integrate_constant`: the world then passes ``work=None`` (it keeps work arrays only
+    when :func:`has_fields`), and a compiled step leaves the passes over the work arrays and the
+    force fields out (numba drops the branch)."""
+    ctx, bodies = context[0], model[0]
+    if work is None:
         integrate_constant(bodies, context, dt)
         return
     free_increments(model, ctx["gravity"], ctx["integrator"], dt, work)

@@ -104,8 +104,8 @@ def step(w: World, steps: int = 4, staged: bool = False) -> None:
 
 # the families the bundled lessons step: every lesson ran from a cache with only these (and the
 # helpers) compiled, and compiled nothing itself; the others (the broadphases' own steps, verlet
-# and rk4 with forces, the soft step with forces, a lone verlet body with drag) took a two-core warmup
-# from 53.5 s to 62 s
+# and rk4 with forces, the soft step with forces, a lone verlet body with drag) took a two-core
+# warmup from 53.5 s to 62 s
 LESSON_FAMILIES = (
     "iterative solver",
     "iterative solver, staged",
