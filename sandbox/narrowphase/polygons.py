@@ -112,7 +112,7 @@ def segment_fractions(p1x, p1y, q1x, q1y, p2x, p2y, q2x, q2y):
     return f1, f2
 
 
-@njit
+@njit(inline="always")  # a call per pair: wp reference-counted in and out of each
 def polygon_polygon(wp, o_a, c_a, o_b, c_b, prefer_a, margin):
     """Manifold of convex polygons a and b: world-frame rows ``o_a`` to ``o_a + c_a`` of ``wp``
     (vertex x, y, CCW, and the outward normal of the edge starting there), likewise for b.
