@@ -41,22 +41,18 @@ from sandbox.solvers import wide_single as single
 from sandbox.solvers.common import masses, normal_speed
 from sandbox.solvers.impulses import block_totals, friction_step, normal_step
 from sandbox.solvers.wide import (
-    BLOCK,
     COLOURS,
     LANES,
-    VAX,
     buffers,
     colour,
     groups,
     has_two_points,
-    lanes_in,
-    lanes_out,
     pack,
     place,
     put_velocities,
     take_velocities,
     unpack,
-    visit_block,
+    visit_colour,
 )
 
 # at a large dt (:func:`large_step`): sweep until no normal constraint is off by more than
@@ -265,43 +261,15 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
             put_velocities(velocities, bodies)
             solve_joint_velocities(joints, bodies, ON)
             take_velocities(bodies, velocities)
-        sweep_colours((lanes, owners, starts), (lanes1, owners1, starts1), count, velocities)
+        for c in range(count):
+            visit_colour(lanes, owners, starts[2 * c], starts[2 * c + 1], velocities, ON)
+            visit_colour(lanes, owners, starts[2 * c + 1], starts[2 * c + 2], velocities, OFF)
+            single.visit_colour(lanes1, owners1, starts1[c], starts1[c + 1], velocities)
         for q in range(len(alone)):
             visit_rows(contacts[alone[visit(q, half)]], velocities)
     put_velocities(velocities, bodies)
     unpack(contacts, lanes, owners, blocks)
     single.unpack(contacts, lanes1, owners1, blocks1)
-
-
-# one call a sweep, the colours' lanes visited in its own loop: an inlined function per colour
-# would bind its arrays anew on every call, each binding reference-counted (numba's runtime: a
-# call and an atomic add, in and out), ten a colour; the rain of 100 discs spent 4 % of its
-# step there
-@njit
-def sweep_colours(two, one, count: int, velocities) -> None:
-    """One sweep over the lanes (:mod:`sandbox.solvers.wide`), colour by colour: the colour's
-    two-point lanes (``two`` = (lanes, owners, starts): group 2 c with the block solver, then
-    group 2 c + 1 without, :func:`~sandbox.solvers.wide.groups`), then its one-point lanes
-    (``one``, group c, :mod:`sandbox.solvers.wide_single`). For each, the bodies' velocities
-    (``velocities``, a row (vx, vy, w) per body) into all its lanes
-    (:func:`~sandbox.solvers.wide.lanes_in`), the visits, the velocities back
-    (:func:`~sandbox.solvers.wide.lanes_out`): no two contacts of a colour share a moving body,
-    so the two groups go in and out together."""
-    lanes, owners, starts = two
-    lanes1, owners1, starts1 = one
-    for c in range(count):
-        first, middle, end = starts[2 * c], starts[2 * c + 1], starts[2 * c + 2]
-        lanes_in(lanes, owners, (first, end, BLOCK, VAX), velocities)
-        for b in range(first, middle):  # the same function, compiled for each kind of block
-            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), True)
-        for b in range(middle, end):
-            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), False)
-        lanes_out(lanes, owners, (first, end, BLOCK, VAX), velocities)
-        first, end = starts1[c], starts1[c + 1]
-        lanes_in(lanes1, owners1, (first, end, single.BLOCK, single.VAX), velocities)
-        for b in range(first, end):
-            single.visit_block(lanes1, np.uint64(b) * np.uint64(single.BLOCK))
-        lanes_out(lanes1, owners1, (first, end, single.BLOCK, single.VAX), velocities)
 
 
 @njit

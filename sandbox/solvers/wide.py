@@ -291,6 +291,21 @@ def visit_block(lanes, start, block: bool) -> None:
         lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
 
 
+@njit(inline="always")  # as a call, its arrays were reference-counted in and out each colour
+def visit_colour(lanes, owners, first: int, end: int, velocities, block: bool) -> None:
+    """One visit of every contact of a group of a colour (blocks ``first`` to ``end``, all
+    solved with the block solver or all without: ``block``, :func:`groups`): the bodies'
+    velocities (``velocities``, a row (vx, vy, w) per body) into all the group's lanes
+    (:func:`lanes_in`), the visits, the velocities back (:func:`lanes_out`)."""
+    lanes_in(lanes, owners, (first, end, BLOCK, VAX), velocities)
+    for b in range(first, end):
+        if block:  # the same function, compiled for each kind of block
+            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), True)
+        else:
+            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), False)
+    lanes_out(lanes, owners, (first, end, BLOCK, VAX), velocities)
+
+
 @njit
 def lanes_in(lanes, owners, span, velocities) -> None:
     """The velocities of each lane's bodies into the lanes of blocks ``first`` to ``end``

@@ -174,7 +174,7 @@ def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
     """One push of every point of a colour's contacts (blocks ``first`` to ``end``): the
     bodies' poses (``poses``, a row (x, y, cos, sin, turn) per body, :func:`take_poses`) into
     all the colour's lanes, the pushes, the poses back (as
-    :func:`sandbox.solvers.iterative.sweep_colours`). Returns (smallest separation seen (m),
+    :func:`sandbox.solvers.wide.visit_colour`). Returns (smallest separation seen (m),
     whether anything moved, the overlap met (um, exact: a sum of integers))."""
     for block in range(first, end):
         start = np.uint64(block) * np.uint64(BLOCK)
