@@ -113,7 +113,7 @@ def pyramid_drop(base: int = 20, **settings) -> float:
 
 
 def test_the_switch_keeps_a_pyramid_as_the_classic_pass_leaves_it():
-    # boxes of one mass, no deep overlap: no step needs layers (penetration.needs_layers), and
+    # boxes of one mass, no deep overlap: no step needs layers (position_layers.needs_layers), and
     # the pyramid of 20 rests exactly where the classic pass leaves it (28.38 mm down)
     assert pyramid_drop() == pyramid_drop(robust_positions=False)
 
@@ -123,7 +123,7 @@ def test_the_passes_visit_order_is_a_stable_sort_of_the_layer_keys():
     # argsort exactly, ties in contact order
     import numpy as np
 
-    from sandbox.penetration import counting_order
+    from sandbox.position_layers import counting_order
 
     rng = np.random.default_rng(3)
     for size, top in ((0, 2), (1, 2), (50, 3), (1000, 41)):

@@ -6,10 +6,18 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_wide_sweeps import CASES, instructions
+from test_wide_sweeps import CASES, instructions, scenes
 
-from sandbox.penetration import position_impulses, position_order, wide_position_impulses
+from sandbox.build import build_world
+from sandbox.penetration import (
+    first_push,
+    fix_positions,
+    position_impulses,
+    wide_position_impulses,
+)
+from sandbox.position_layers import position_order
 from sandbox.records import CONTACT
+from sandbox.scene import validate_scene
 from sandbox.solvers.iterative import visit
 from sandbox.solvers.wide import COLOURS, colour
 
@@ -91,6 +99,48 @@ def test_a_held_contact_still_counts_its_bodies_as_moving():
     got = wide_position_impulses(sunk_held, wide_b, BETA, BOUNDS, layering, lanes)
     assert got == position_impulses(sunk_held, k, record_b, BETA, BOUNDS, records)
     assert np.array_equal(wide_b["com"], record_b["com"])
+
+
+@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("depth", ["as found", "2 cm deeper"])
+def test_first_push_says_whether_a_pass_would_move_anything(case, depth):
+    # the look that lets the position stage skip a pass that would move nothing: it must find
+    # a push exactly when the first pass moves something, and else the pass's smallest
+    # separation, to the bit (the settled piles and planks as found push nothing, the rain
+    # and everything 2 cm deeper do)
+    contacts, bodies = CASES[case]()
+    if depth != "as found":
+        contacts, bodies = sunk(contacts, bodies)
+    k = len(contacts)
+    pushes, worst = first_push(contacts, k, bodies, BOUNDS)
+    records = position_order(contacts, k, bodies, False, GAP, BOUNDS, False)[0]
+    after = bodies.copy()
+    pass_worst, moved, _ = position_impulses(contacts, k, after, BETA, BOUNDS, records)
+    assert pushes == moved
+    assert pushes == (depth != "as found" or case.startswith("rain"))
+    if not pushes:
+        assert worst == pass_worst
+        assert np.array_equal(after, bodies)
+
+
+def test_a_resting_pile_leaves_the_position_stage_as_one_pass_that_moved_nothing():
+    # the whole stage, as a step runs it, on the pyramid at rest: the look stands for the
+    # first pass (no pose, turn or angle changes; one pass counted; no progress to compare)
+    world = build_world(validate_scene(scenes.pyramid(20)))
+    for _ in range(60):
+        world.step()
+    ctx = world.context[0]
+    s = int(ctx["contact_set"])
+    k = int(ctx["contact_count"][s])
+    contacts, before = world._buffers.sets[s], world.state.copy()
+    rot = world.rot.copy()
+    worst = fix_positions(contacts, k, world.joint_table, world.state, world.rot, world.context)
+    assert np.array_equal(world.state, before) and np.array_equal(world.rot, rot)
+    assert ctx["position_passes"] == 1 and np.isnan(ctx["position_progress"])
+    bounds = (ctx["slop"], ctx["max_push_speed"] * ctx["dt"])  # robust_positions is on
+    records = position_order(contacts, k, before, False, GAP, bounds, False)[0]
+    beta = ctx["baumgarte"]
+    assert worst == position_impulses(contacts, k, before.copy(), beta, bounds, records)[0] < 0
 
 
 def test_empty_contact_list():

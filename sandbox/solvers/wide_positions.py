@@ -5,7 +5,7 @@ eight contacts at a time, as the velocity sweeps are (:mod:`sandbox.solvers.wide
 A position pass visits the contacts one after another and moves their bodies as it goes; any
 fixed order is a valid pass. The contacts with two points are coloured as for the velocity
 sweeps, except that a body moves when its own inverse mass or moment is not zero (the passes
-push with the bodies' own masses: :func:`sandbox.penetration.position_masses`). A pass is
+push with the bodies' own masses: :func:`sandbox.position_layers.position_masses`). A pass is
 then each colour's contacts, eight at a time, then the others (one point, or no colour left)
 one by one in :func:`sandbox.solvers.iterative.visit` order. :func:`order` lists that order,
 and the passes over the records follow it where the lanes do not run (uncompiled; the half
@@ -49,12 +49,12 @@ POSE_B = (BX, BY, BC, BS, BTURN)
 
 @njit
 def allowed_separation(c, p, slop: float, push: float) -> float:
-    """(The position stage's, :mod:`sandbox.penetration`, which takes it from here, where
-    the lanes are packed with it.) The separation a point is pushed out to this step (m): -slop, except that an overlap
+    """The separation a point is pushed out to this step (m): -slop, except that an overlap
     already there when the step began comes out by at most ``push`` (m, ``max_push_speed``
     times dt), so bodies spawned inside one another separate at a bounded speed instead of
     being fired apart (and through the ground). What the step's own motion pushed in is taken
-    out entirely. ``push`` is infinite unless ``settings.robust_positions`` is on."""
+    out entirely. ``push`` is infinite unless ``settings.robust_positions`` is on. (The
+    position stage's, :mod:`sandbox.penetration`; here, where the lanes are packed with it.)"""
     if p["depth"] <= slop + push:  # the usual case: no load sag to look up (it only lowers it)
         return -slop
     return min(-slop, -excess_depth(c, p) + push)
