@@ -295,8 +295,18 @@ FIELDS: dict[str, Field] = {
 PYMUNK_HONOURS = tuple(f.name for f in fields(Settings) if f.metadata["pymunk"])
 
 
+# the scene's own fields that a setting could be taken for (``--set gravity=0,-1.62``)
+SCENE_LEVEL = {
+    "gravity": 'the scene\'s own field, beside "settings": "gravity": [0, -1.62] in the file',
+    "dt": 'the scene\'s own field, beside "settings"; on the command line, --dt',
+}
+
+
 def unknown_setting(name: str, path: str) -> SceneError:
-    """The error for a setting that does not exist, with a did-you-mean when one is close."""
+    """The error for a setting that does not exist, with a did-you-mean when one is close, or
+    where to set it when it is the scene's own field (gravity, dt)."""
+    if name in SCENE_LEVEL:
+        return SceneError(path, f"unknown setting ({name} is {SCENE_LEVEL[name]})")
     close = difflib.get_close_matches(name, tuple(FIELDS), n=1)
     hint = f" (did you mean {close[0]!r}?)" if close else ""
     return SceneError(path, f"unknown setting{hint}")

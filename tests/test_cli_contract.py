@@ -102,6 +102,22 @@ def test_compare_vary_bad_key_exits_2_and_writes_nothing(tmp_path, capsys):
     assert not out.exists()
 
 
+@pytest.mark.parametrize(
+    "key, where",
+    [
+        ("gravity=0,-1.62", 'gravity is the scene\'s own field, beside "settings": "gravity": '),
+        ("dt=0.01", 'dt is the scene\'s own field, beside "settings"; on the command line, --dt'),
+    ],
+)
+def test_set_of_a_scene_field_says_where_it_is_set(tmp_path, capsys, key, where):
+    # a teacher's --set gravity=... names the field and where it belongs, not a did-you-mean
+    out = tmp_path / "t.csv"
+    assert main(["simulate", str(DROP), "--steps", "3", "--set", key, "--trace", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: --set {key.split('=')[0]}: unknown setting ({where}")
+    assert err.count("\n") == 1 and not out.exists()
+
+
 def test_schema_command_prints_the_shipped_schema(capsys):
     from sandbox.schema import scene_schema, shipped_schema_text
 
