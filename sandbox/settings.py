@@ -297,8 +297,8 @@ PYMUNK_HONOURS = tuple(f.name for f in fields(Settings) if f.metadata["pymunk"])
 
 # the scene's own fields that a setting could be taken for (``--set gravity=0,-1.62``)
 SCENE_LEVEL = {
-    "gravity": 'the scene\'s own field, beside "settings": "gravity": [0, -1.62] in the file',
-    "dt": 'the scene\'s own field, beside "settings"; on the command line, --dt',
+    "gravity": 'the scene\'s own, beside its settings: "gravity": [0, -1.62] in the file',
+    "dt": "the scene's own, beside its settings; on the command line, --dt",
 }
 
 

@@ -105,8 +105,8 @@ def test_compare_vary_bad_key_exits_2_and_writes_nothing(tmp_path, capsys):
 @pytest.mark.parametrize(
     "key, where",
     [
-        ("gravity=0,-1.62", 'gravity is the scene\'s own field, beside "settings": "gravity": '),
-        ("dt=0.01", 'dt is the scene\'s own field, beside "settings"; on the command line, --dt'),
+        ("gravity=0,-1.62", 'gravity is the scene\'s own, beside its settings: "gravity": '),
+        ("dt=0.01", "dt is the scene's own, beside its settings; on the command line, --dt"),
     ],
 )
 def test_set_of_a_scene_field_says_where_it_is_set(tmp_path, capsys, key, where):
