@@ -34,12 +34,19 @@ def sunk(contacts, bodies):
     return contacts, bodies
 
 
-@pytest.mark.parametrize("case", CASES)
-@pytest.mark.parametrize("depth", ["as found", "2 cm deeper"])
-def test_wide_passes_equal_the_record_passes_bit_for_bit(case, depth):
+DEPTHS = ("as found", "2 cm deeper")
+
+
+def case_at(case: str, depth: str):
+    """The contacts and bodies of ``case``, as found or :func:`sunk`."""
     contacts, bodies = CASES[case]()
-    if depth != "as found":
-        contacts, bodies = sunk(contacts, bodies)
+    return (contacts, bodies) if depth == "as found" else sunk(contacts, bodies)
+
+
+@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("depth", DEPTHS)
+def test_wide_passes_equal_the_record_passes_bit_for_bit(case, depth):
+    contacts, bodies = case_at(case, depth)
     k = len(contacts)
     layering, lanes = position_order(contacts, k, bodies, False, GAP, BOUNDS, True)
     records = position_order(contacts, k, bodies, False, GAP, BOUNDS, False)[0]
@@ -102,15 +109,13 @@ def test_a_held_contact_still_counts_its_bodies_as_moving():
 
 
 @pytest.mark.parametrize("case", CASES)
-@pytest.mark.parametrize("depth", ["as found", "2 cm deeper"])
+@pytest.mark.parametrize("depth", DEPTHS)
 def test_first_push_says_whether_a_pass_would_move_anything(case, depth):
     # the look that lets the position stage skip a pass that would move nothing: it must find
     # a push exactly when the first pass moves something, and else the pass's smallest
     # separation, to the bit (the settled piles and planks as found push nothing, the rain
     # and everything 2 cm deeper do)
-    contacts, bodies = CASES[case]()
-    if depth != "as found":
-        contacts, bodies = sunk(contacts, bodies)
+    contacts, bodies = case_at(case, depth)
     k = len(contacts)
     pushes, worst = first_push(contacts, k, bodies, BOUNDS)
     records = position_order(contacts, k, bodies, False, GAP, BOUNDS, False)[0]
