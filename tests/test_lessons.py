@@ -1,8 +1,8 @@
 """Every lesson runs as a notebook, the way `sandbox lessons` runs it (jupytext -> ipynb, a fresh
 kernel forked from one that imported the course's libraries, the HTML page), once for the
-whole module, two at a time. Then: each writes figures, shows every figure and animation inline
-in the cell that made it, shows each table once (and saves it to tables.md), its explorer cell
-executes, and the course book's links all resolve.
+whole module, two at a time, the longest first (its own schedule). Then: each writes figures,
+shows every figure and animation inline in the cell that made it, shows each table once (and
+saves it to tables.md), its explorer cell executes, and the course book's links all resolve.
 
 The kernels run with SANDBOX_CHECK_FIGURES set, so every figure a lesson saves through
 ``sandbox.lessonkit.save_figure`` is checked against the figure standard
@@ -13,13 +13,13 @@ import base64
 import os
 import re
 import tempfile
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import nbformat
 import pytest
 
 from sandbox import compile_cache, figure_standard
+from sandbox.cli.lessons import Schedule
 from sandbox.course.book import write_book
 from sandbox.course.catalogue import find_lessons
 from sandbox.course.links import book_problems
@@ -48,9 +48,10 @@ def course(tmp_path_factory):
         with tempfile.TemporaryDirectory() as tmp, kernels(Path(tmp), outputs, engine) as specs:
             logs = Path(tmp) / "compiles"  # as `sandbox lessons`: compiles counted, not shown
             logs.mkdir()
-            with ThreadPoolExecutor(max_workers=2) as pool:
-                run = lambda lesson: run_notebook(lesson, outputs, specs, logs)  # noqa: E731
-                outcomes = list(pool.map(run, LESSONS))
+            run = lambda lesson: run_notebook(lesson, outputs, specs, logs)  # noqa: E731
+            schedule = Schedule(LESSONS, run, 2)  # longest first, as `sandbox lessons`
+            schedule.open(early=True, late=True)
+            outcomes = [schedule.results[lesson.stem].result() for lesson in LESSONS]
     finally:
         os.environ.pop(figure_standard.ENV, None)
     write_book(LESSONS, outputs)
