@@ -8,7 +8,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 DEV_STAMP := $(VENV)/.installed-dev
 
-.PHONY: lessons notebook test test-suite test-lessons test-rest warm test-bounds lint format docs bench clean
+.PHONY: lessons notebook test test-suite test-bounds lint format docs bench clean
 
 # the project with what the tests and `make lessons` need (the `test` extra)
 $(STAMP): pyproject.toml setup.py
@@ -34,25 +34,15 @@ $(VENV)/.installed-notebook: $(STAMP)
 	$(BIN)/python -m pip install -q -e '.[test,notebook]'
 	touch $(VENV)/.installed-notebook
 
-# the bounds-checked world tests beside the suite, and once the engine is compiled (`warm`), the
-# lessons' notebooks (tests/test_lessons.py) beside the rest of the suite, each target's output
-# shown when it ends. The bounds-checked tests end first (about 3 of the suite's 5 minutes in
-# CI); in order, the rest of the suite then ran on one core and left the other idle
+# the suite and the bounds-checked world tests side by side, one per core (each target's output
+# shows when it ends): together they take about as long as the suite alone
 test: $(STAMP)
 	@echo "the test suite and the bounds-checked world tests, side by side (a few minutes)"
-	@$(MAKE) --no-print-directory -j3 --output-sync=target test-bounds test-lessons test-rest
+	@$(MAKE) --no-print-directory -j2 --output-sync=target test-suite test-bounds
 
-# the suite: the lessons as notebooks, and the rest (side by side with -j2)
-test-suite: test-lessons test-rest
-
-warm: $(STAMP)
+test-suite: $(STAMP)
 	$(BIN)/sandbox warmup --quiet
-
-test-lessons: warm
-	$(BIN)/python -m pytest -q -p no:cacheprovider tests/test_lessons.py
-
-test-rest: warm
-	$(BIN)/python -m pytest -q --ignore=tests/test_lessons.py
+	$(BIN)/python -m pytest -q
 
 # the world tests again with numba's array bounds checks on (its own compile cache): an
 # out-of-bounds index in a kernel fails a test instead of corrupting memory
