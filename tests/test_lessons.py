@@ -13,6 +13,7 @@ import base64
 import os
 import re
 import tempfile
+from concurrent.futures import wait
 from pathlib import Path
 
 import nbformat
@@ -51,7 +52,9 @@ def course(tmp_path_factory):
             run = lambda lesson: run_notebook(lesson, outputs, specs, logs)  # noqa: E731
             schedule = Schedule(LESSONS, run, 2)  # longest first, as `sandbox lessons`
             schedule.open(early=True, late=True)
-            outcomes = [schedule.results[lesson.stem].result() for lesson in LESSONS]
+            futures = [schedule.results[lesson.stem] for lesson in LESSONS]
+            wait(futures)  # every lesson done before the kernels stop, even if one raised
+            outcomes = [future.result() for future in futures]
     finally:
         os.environ.pop(figure_standard.ENV, None)
     write_book(LESSONS, outputs)
