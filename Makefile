@@ -36,8 +36,9 @@ $(VENV)/.installed-notebook: $(STAMP)
 
 # the suite and the bounds-checked world tests side by side, one per core (each target's output
 # shows when it ends): together they take about as long as the suite alone. The engine is
-# compiled first, on both cores (`sandbox warmup`), and only then do the bounds-checked tests
-# compile their own copy beside the suite: compiling both at once, the warmup took twice as long
+# compiled first, on both cores (`sandbox warmup`); only then do the bounds-checked tests
+# compile their own copy, beside the suite (compiling both at once, the warmup took half as
+# long again)
 test: $(STAMP)
 	@echo "the test suite and the bounds-checked world tests, side by side (a few minutes)"
 	$(BIN)/sandbox warmup --quiet
