@@ -134,13 +134,13 @@ def test_a_resting_pile_leaves_the_position_stage_as_one_pass_that_moved_nothing
     world = build_world(validate_scene(scenes.pyramid(20)))
     for _ in range(60):
         world.step()
-    ctx = world.context[0]
+    a = world.arrays()
+    ctx = a.context[0]
     s = int(ctx["contact_set"])
     k = int(ctx["contact_count"][s])
-    contacts, before = world._buffers.sets[s], world.state.copy()
-    rot = world.rot.copy()
-    worst = fix_positions(contacts, k, world.joint_table, world.state, world.rot, world.context)
-    assert np.array_equal(world.state, before) and np.array_equal(world.rot, rot)
+    contacts, before, rot = a.buffers.sets[s], a.bodies.copy(), a.rot.copy()
+    worst = fix_positions(contacts, k, a.joints, a.bodies, a.rot, a.context)
+    assert np.array_equal(a.bodies, before) and np.array_equal(a.rot, rot)
     assert ctx["position_passes"] == 1 and np.isnan(ctx["position_progress"])
     bounds = (ctx["slop"], ctx["max_push_speed"] * ctx["dt"])  # robust_positions is on
     records = position_order(contacts, k, before, False, GAP, bounds, False)[0]
