@@ -1,6 +1,8 @@
 """The wide sweeps (sandbox.solvers.wide): contacts coloured so that no two of a colour share a
 moving body, visited eight at a time, give bit for bit what the one-by-one visits give in the
-same order (colour by colour, then the contacts no colour could take)."""
+same order (colour by colour, then the contacts no colour could take), whether the lanes hand
+the velocities on from sweep to sweep or, with joints or contacts no colour takes, through the
+bodies' rows (sandbox.solvers.handoff)."""
 
 from __future__ import annotations
 
@@ -12,12 +14,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sandbox import Body, Box, Circle, World
+from sandbox import Body, Box, Circle, PinJoint, World
 from sandbox.build import build_world
+from sandbox.jit import ON
+from sandbox.joints.solve import solve_joint_velocities
 from sandbox.records import CONTACT, JOINT
 from sandbox.scene import validate_scene
 from sandbox.solvers.iterative import coloured_sweeps, visit, visit_contact
-from sandbox.solvers.wide import COLOURS, colour
+from sandbox.solvers.wide import COLOURS, LANES, colour
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import scenes  # noqa: E402
@@ -34,10 +38,13 @@ def settled(spec: dict, steps: int):
     return world._buffers.sets[s][:k].copy(), world.state.copy()
 
 
-def one_by_one(contacts, bodies, n: int) -> None:
-    """``n`` sweeps visiting the contacts one at a time in the wide sweeps' order: colour by
-    colour (in each, the two-point contacts, then the one-point ones), then the rest in the
-    interleaved order of the one-by-one sweeps."""
+NO_JOINTS = np.zeros(0, dtype=JOINT)
+
+
+def one_by_one(contacts, bodies, n: int, joints=NO_JOINTS) -> None:
+    """``n`` sweeps visiting the joints, then the contacts one at a time in the wide sweeps'
+    order: colour by colour (in each, the two-point contacts, then the one-point ones), then
+    the rest in the interleaved order of the one-by-one sweeps."""
     colours = np.empty(len(contacts), dtype=np.int64)
     count = colour(contacts, len(contacts), bodies, colours, False, True)
     order = [
@@ -49,6 +56,7 @@ def one_by_one(contacts, bodies, n: int) -> None:
     alone = np.flatnonzero(colours == COLOURS)
     order += [alone[visit(q, (len(alone) + 1) // 2)] for q in range(len(alone))]
     for _ in range(n):
+        solve_joint_velocities(joints, bodies, ON)
         for i in order:
             visit_contact(contacts[i], bodies, True)
 
@@ -70,6 +78,30 @@ def fan(spokes: int, disc_every: int = 0):
     return w._buffers.sets[s][: int(ctx["contact_count"][s])].copy(), w.state.copy()
 
 
+def tied_pile():
+    """Boxes and discs piled on the ground, three of them tied by pins to their neighbours and
+    one to a static hook: joints between the sweeps' colours."""
+    w = World(gravity=(0.0, -9.81))
+    ground = w.add_body(Body("ground", type="static", position=(0.0, -0.5)))
+    ground.add_shape(Box(40.0, 1.0))
+    hook = w.add_body(Body("hook", type="static", position=(0.0, 8.0)))
+    pile = []
+    for row in range(4):
+        for i in range(6 - row):
+            body = Body(f"b{row}_{i}", position=(i - 2.5 + 0.5 * row, 0.5 + 0.98 * row))
+            pile.append(w.add_body(body))
+            body.add_shape(Circle(0.45) if (row + i) % 3 == 0 else Box(0.95, 0.95))
+    for a, b in ((pile[0], pile[1]), (pile[6], pile[7]), (pile[7], pile[11])):
+        w.add_joint(PinJoint(a, b))
+    w.add_joint(PinJoint(hook, pile[-1]))
+    for _ in range(30):
+        w.step()
+    a = w.arrays()
+    ctx = a.context[0]
+    s = int(ctx["contact_set"])
+    return a.buffers.sets[s][: int(ctx["contact_count"][s])].copy(), a.bodies.copy(), a.joints
+
+
 CASES = {
     "pyramid of base 20, boxes (two-point manifolds, block solver)": lambda: settled(
         scenes.pyramid(20), 60
@@ -79,16 +111,18 @@ CASES = {
     ),
     "a plank under 80 boxes (contacts no colour takes)": lambda: fan(80),
     "a plank under 40 boxes and 40 discs": lambda: fan(80, disc_every=2),
+    "a pile of boxes and discs, some tied by pins (joints between the colours)": tied_pile,
 }
 
 
 @pytest.mark.parametrize("case", CASES)
 def test_coloured_sweeps_equal_the_one_by_one_visits_bit_for_bit(case):
-    contacts, bodies = CASES[case]()
+    contacts, bodies, *joints = CASES[case]()
+    joints = joints[0] if joints else NO_JOINTS
     assert len(contacts) > 20
     wide_c, wide_b = contacts.copy(), bodies.copy()
-    coloured_sweeps(wide_c, len(wide_c), np.zeros(0, dtype=JOINT), wide_b, 10)
-    one_by_one(contacts, bodies, 10)
+    coloured_sweeps(wide_c, len(wide_c), joints.copy(), wide_b, 10)
+    one_by_one(contacts, bodies, 10, joints.copy())
     for field in ("vel", "omega"):
         assert np.array_equal(wide_b[field], bodies[field]), field
     for field in ("normal_impulse", "tangent_impulse", "max_normal_impulse"):
@@ -104,7 +138,7 @@ def test_no_colour_has_two_contacts_on_one_moving_body(single):
     # single: the one-point contacts get colours too (the velocity sweeps); else only the
     # two-point ones (the position passes)
     for case in CASES:
-        contacts, bodies = CASES[case]()
+        contacts, bodies, *_ = CASES[case]()
         colours = np.empty(len(contacts), dtype=np.int64)
         count = colour(contacts, len(contacts), bodies, colours, False, single)
         wanted = contacts["count"] >= (1 if single else 2)
@@ -177,3 +211,36 @@ def test_the_lane_loop_compiles_to_vector_instructions(kind):
         module.visit_block, (np.zeros(module.BLOCK), np.uint64(0), *extra)
     )
     assert packed > 10 and single < packed, (packed, single)
+
+
+def test_each_lane_takes_its_bodies_velocities_from_the_lane_that_last_held_them():
+    # two groups of one block of one-point lanes: body 1 in the first lane of both, body 0 in
+    # the first group only, body 2 in the second only; every other lane empty (row 3)
+    from sandbox.solvers import handoff, wide_single
+
+    lanes = np.zeros((3, 2 * LANES), dtype=np.int64)
+    lanes[1:] = 3
+    lanes[:, 0], lanes[:, LANES] = (0, 0, 1), (1, 1, 2)
+    none = np.zeros((3, 0), dtype=np.int64)
+    size, at = wide_single.BLOCK, wide_single.VAX
+    layouts = ((0, 0, at), (0, size, at))
+    order = handoff.sweep_order(np.zeros(5, dtype=np.int64), np.array([0, 1, 2]), 2)
+    sources, firsts, lasts = handoff.plan(order, (none, lanes), layouts, 4)
+    other = handoff.OTHER
+    first_b, second_a = int(at) + other, size + int(at)  # body 1 in each group
+    now, later = sources[0][1], sources[1][1]
+    assert now[1, 0] == first_b  # its first lane of a sweep: primed, itself
+    assert now[0, LANES] == first_b  # the second group takes it from the first
+    assert later[1, 0] == second_a  # a later sweep: from its last lane of the sweep before
+    assert later[0, LANES] == first_b
+    assert now[1, LANES] == later[1, LANES] == second_a + other  # body 2: one group, itself
+    assert sorted(map(tuple, firsts)) == sorted(
+        [(int(at), 0), (first_b, 1), (second_a + other, 2)]
+        + [(int(at) + lane + side * other, 3) for lane in range(1, LANES) for side in (0, 1)]
+    )
+    assert dict(map(tuple, lasts)) == {
+        0: int(at),
+        1: second_a,
+        2: second_a + other,
+        3: size + int(at) + LANES - 1 + other,  # the empty lanes: the last of them
+    }

@@ -37,12 +37,15 @@ import numpy as np
 from sandbox.jit import JIT_ENABLED, OFF, ON, njit
 from sandbox.joints.solve import solve_joint_velocities
 from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
+from sandbox.solvers import handoff
 from sandbox.solvers import wide_single as single
 from sandbox.solvers.common import masses, normal_speed
 from sandbox.solvers.impulses import block_totals, friction_step, normal_step
 from sandbox.solvers.wide import (
+    BLOCK,
     COLOURS,
     LANES,
+    VAX,
     buffers,
     colour,
     groups,
@@ -52,7 +55,7 @@ from sandbox.solvers.wide import (
     put_velocities,
     take_velocities,
     unpack,
-    visit_colour,
+    visit_block,
 )
 
 # at a large dt (:func:`large_step`): sweep until no normal constraint is off by more than
@@ -226,11 +229,11 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     empty = len(bodies)  # the row of velocities that empty lanes read and write
     # two-point contacts in two groups a colour: with the block solver (2 c), without (2 c + 1)
     if has_two_points(contacts, k):
-        lanes, owners, starts = buffers(k, 2 * count)
+        owners, starts = buffers(k, 2 * count)
         keys = groups(ends, k, colours, count, 2, True)
         blocks = place(ends, k, keys, 2 * count, owners, empty, starts)
     else:  # discs alone: no two-point lanes to place (rain of 100: 0.988 of its time a step)
-        lanes, owners = np.empty(0), np.empty((3, 0), dtype=np.int64)
+        owners = np.empty((3, 0), dtype=np.int64)
         starts, blocks = np.zeros(2 * count + 1, dtype=np.int64), 0
     owners1 = np.empty((3, ((k + LANES - 1) // LANES + count) * LANES), dtype=np.int64)
     starts1 = np.empty(count + 1, dtype=np.int64)
@@ -251,25 +254,48 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
             for q in range(len(alone)):
                 visit_contact(contacts[alone[visit(q, half)]], bodies, ON)
         return
-    pack(contacts, lanes, owners, blocks)
-    lanes1 = np.empty(blocks1 * single.BLOCK)
-    single.pack(contacts, lanes1, owners1, blocks1)
+    # one array for both layouts, so that a lane can take its bodies' velocities from a lane of
+    # either (:mod:`sandbox.solvers.handoff`)
+    base1 = blocks * BLOCK
+    lanes = np.empty(base1 + blocks1 * single.BLOCK)
+    pack(contacts, lanes[:base1], owners, blocks)
+    single.pack(contacts, lanes[base1:], owners1, blocks1)
+    layouts = ((0, BLOCK, VAX), (base1, single.BLOCK, single.VAX))
+    order = handoff.sweep_order(starts, starts1, count)
+    sources, firsts, lasts = handoff.plan(order, (owners, owners1), layouts, empty + 1)
     velocities = np.zeros((empty + 1, 3))
     take_velocities(bodies, velocities)
-    for _ in range(n):
+    # with nothing between the colours but the colours, the lanes keep the velocities from one
+    # sweep to the next; joints and the contacts no colour takes read and write the rows
+    chained = len(joints) == 0 and len(alone) == 0
+    far = len(lanes) > handoff.FAR
+    for s in range(n):
         if len(joints) > 0:  # joints read and write the bodies' records
             put_velocities(velocities, bodies)
             solve_joint_velocities(joints, bodies, ON)
             take_velocities(bodies, velocities)
+        fresh = s == 0 or not chained
+        if fresh:
+            handoff.prime(lanes, firsts, velocities)
+        now = sources[0] if fresh else sources[1]
         for c in range(count):
-            visit_colour(lanes, owners, starts[2 * c], starts[2 * c + 1], velocities, ON)
-            visit_colour(lanes, owners, starts[2 * c + 1], starts[2 * c + 2], velocities, OFF)
-            single.visit_colour(lanes1, owners1, starts1[c], starts1[c + 1], velocities)
+            first, middle, end = starts[2 * c], starts[2 * c + 1], starts[2 * c + 2]
+            handoff.hand_in(lanes, now[0], layouts[0], first, middle, far)
+            for b in range(first, middle):
+                visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), True)
+            handoff.hand_in(lanes, now[0], layouts[0], middle, end, far)
+            for b in range(middle, end):
+                visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), False)
+            handoff.hand_in(lanes, now[1], layouts[1], starts1[c], starts1[c + 1], far)
+            for b in range(starts1[c], starts1[c + 1]):
+                single.visit_block(lanes, np.uint64(base1) + np.uint64(b) * np.uint64(single.BLOCK))
+        if not chained or s == n - 1:
+            handoff.hand_back(lanes, lasts, velocities)
         for q in range(len(alone)):
             visit_rows(contacts[alone[visit(q, half)]], velocities)
     put_velocities(velocities, bodies)
-    unpack(contacts, lanes, owners, blocks)
-    single.unpack(contacts, lanes1, owners1, blocks1)
+    unpack(contacts, lanes[:base1], owners, blocks)
+    single.unpack(contacts, lanes[base1:], owners1, blocks1)
 
 
 @njit

@@ -22,7 +22,9 @@ block starting at ``i`` is ``lanes[i + F + l]``. A colour's last block is filled
 lanes (no bodies, zero masses: they push nothing). Contacts with one point (discs) have lanes
 of a layout of their own (:mod:`sandbox.solvers.wide_single`), visited after each colour's
 two-point lanes; any contact for which 63 colours do not suffice (one body touching more than
-63 others) is visited one by one after the colours (:func:`colour`).
+63 others) is visited one by one after the colours (:func:`colour`). Before a colour's visits
+its lanes take their bodies' velocities from the lanes that last held them
+(:mod:`sandbox.solvers.handoff`).
 """
 
 from __future__ import annotations
@@ -120,14 +122,10 @@ def has_two_points(contacts, k: int) -> bool:
 
 @njit
 def buffers(k: int, count: int):
-    """(lanes, owners, starts) with room for ``k`` contacts in ``count`` colours: ``owners``
-    (3, lanes) holds each lane's contact and its two bodies."""
+    """(owners, starts) with room for ``k`` contacts in ``count`` groups (:func:`place`):
+    ``owners`` (3, lanes) holds each lane's contact and its two bodies."""
     blocks = (k + LANES - 1) // LANES + count
-    return (
-        np.empty(blocks * BLOCK),
-        np.empty((3, blocks * LANES), dtype=np.int64),
-        np.empty(count + 1, dtype=np.int64),
-    )
+    return np.empty((3, blocks * LANES), dtype=np.int64), np.empty(count + 1, dtype=np.int64)
 
 
 @njit
@@ -289,54 +287,6 @@ def visit_block(lanes, start, block: bool) -> None:
         lanes[p1 + MAX_NORMAL_IMPULSE] = max(lanes[p1 + MAX_NORMAL_IMPULSE], x2)
         lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
         lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
-
-
-@njit(inline="always")  # as a call, its arrays were reference-counted in and out each colour
-def visit_colour(lanes, owners, first: int, end: int, velocities, block: bool) -> None:
-    """One visit of every contact of a group of a colour (blocks ``first`` to ``end``, all
-    solved with the block solver or all without: ``block``, :func:`groups`): the bodies'
-    velocities (``velocities``, a row (vx, vy, w) per body) into all the group's lanes
-    (:func:`lanes_in`), the visits, the velocities back (:func:`lanes_out`)."""
-    lanes_in(lanes, owners, (first, end, BLOCK, VAX), velocities)
-    for b in range(first, end):
-        if block:  # the same function, compiled for each kind of block
-            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), True)
-        else:
-            visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), False)
-    lanes_out(lanes, owners, (first, end, BLOCK, VAX), velocities)
-
-
-@njit
-def lanes_in(lanes, owners, span, velocities) -> None:
-    """The velocities of each lane's bodies into the lanes of blocks ``first`` to ``end``
-    (``span`` = (first, end, numbers per block, where the six velocity fields begin), for
-    this layout and :mod:`sandbox.solvers.wide_single`'s). A whole colour at once: no two of
-    its contacts share a moving body, so this is the same as block by block; but the vector
-    loads of a block's velocities, right after the eight single stores that put them there,
-    would wait for those stores to finish (the processor cannot forward several stores into
-    one load): copied for the whole colour first, a sweep of the settled pyramid of base 40
-    took 25 us instead of 29."""
-    first, end, size, at = span
-    for b in range(first, end):
-        start = np.uint64(b) * np.uint64(size) + at
-        for lane in range(LANES):
-            q, i = b * LANES + lane, start + np.uint64(lane)
-            v, w = velocities[owners[1, q]], velocities[owners[2, q]]
-            lanes[i], lanes[i + VAY - VAX], lanes[i + WA - VAX] = v[0], v[1], v[2]
-            lanes[i + VBX - VAX], lanes[i + VBY - VAX], lanes[i + WB - VAX] = w[0], w[1], w[2]
-
-
-@njit
-def lanes_out(lanes, owners, span, velocities) -> None:
-    """The lanes' velocities back into the bodies' rows (``span`` as :func:`lanes_in`)."""
-    first, end, size, at = span
-    for b in range(first, end):
-        start = np.uint64(b) * np.uint64(size) + at
-        for lane in range(LANES):
-            q, i = b * LANES + lane, start + np.uint64(lane)
-            v, w = velocities[owners[1, q]], velocities[owners[2, q]]
-            v[0], v[1], v[2] = lanes[i], lanes[i + VAY - VAX], lanes[i + WA - VAX]
-            w[0], w[1], w[2] = lanes[i + VBX - VAX], lanes[i + VBY - VAX], lanes[i + WB - VAX]
 
 
 @njit

@@ -173,8 +173,9 @@ def visit_block(lanes, start, beta: float) -> None:
 def visit_colour(lanes, owners, first: int, end: int, poses, beta: float):
     """One push of every point of a colour's contacts (blocks ``first`` to ``end``): the
     bodies' poses (``poses``, a row (x, y, cos, sin, turn) per body, :func:`take_poses`) into
-    all the colour's lanes, the pushes, the poses back (as
-    :func:`sandbox.solvers.wide.visit_colour`). Returns (smallest separation seen (m),
+    all the colour's lanes, the pushes, the poses back. (The velocity sweeps hand the
+    velocities from lane to lane instead, :mod:`sandbox.solvers.handoff`, with a plan made
+    once for ten sweeps; here it would be made for one pass.) Returns (smallest separation seen (m),
     whether anything moved, the overlap met (um, exact: a sum of integers))."""
     for block in range(first, end):
         start = np.uint64(block) * np.uint64(BLOCK)

@@ -40,8 +40,6 @@ from sandbox.solvers.wide import (
     TANGENT_IMPULSE,
     TANGENT_MASS,
     _offsets,
-    lanes_in,
-    lanes_out,
     pack_point,
     unpack_point,
 )
@@ -106,14 +104,3 @@ def visit_block(lanes, start) -> None:
         lanes[p + MAX_NORMAL_IMPULSE] = max(lanes[p + MAX_NORMAL_IMPULSE], new)
         lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
         lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
-
-
-@njit(inline="always")  # as a call, its arrays were reference-counted in and out each colour
-def visit_colour(lanes, owners, first: int, end: int, velocities) -> None:
-    """One visit of every one-point contact of a colour (blocks ``first`` to ``end``), as
-    :func:`sandbox.solvers.wide.visit_colour`: the velocities into all the colour's lanes,
-    the visits, the velocities back."""
-    lanes_in(lanes, owners, (first, end, BLOCK, VAX), velocities)
-    for block in range(first, end):
-        visit_block(lanes, np.uint64(block) * np.uint64(BLOCK))
-    lanes_out(lanes, owners, (first, end, BLOCK, VAX), velocities)
