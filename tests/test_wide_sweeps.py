@@ -208,7 +208,7 @@ def test_the_lane_loop_compiles_to_vector_instructions(kind):
     module = wide_single if kind == "one point" else wide
     extra = () if kind == "one point" else (kind == "block solver",)
     packed, single = instructions(
-        module.visit_block, (np.zeros(module.BLOCK), np.uint64(0), *extra)
+        module.visit_blocks, (np.zeros(module.BLOCK), np.uint64(0), 1, *extra)
     )
     assert packed > 10 and single < packed, (packed, single)
 

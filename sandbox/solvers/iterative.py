@@ -55,7 +55,7 @@ from sandbox.solvers.wide import (
     put_velocities,
     take_velocities,
     unpack,
-    visit_block,
+    visit_blocks,
 )
 
 # at a large dt (:func:`large_step`): sweep until no normal constraint is off by more than
@@ -280,15 +280,17 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
         now = sources[0] if fresh else sources[1]
         for c in range(count):
             first, middle, end = starts[2 * c], starts[2 * c + 1], starts[2 * c + 2]
-            handoff.hand_in(lanes, now[0], layouts[0], first, middle, far)
-            for b in range(first, middle):
-                visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), True)
-            handoff.hand_in(lanes, now[0], layouts[0], middle, end, far)
-            for b in range(middle, end):
-                visit_block(lanes, np.uint64(b) * np.uint64(BLOCK), False)
-            handoff.hand_in(lanes, now[1], layouts[1], starts1[c], starts1[c + 1], far)
-            for b in range(starts1[c], starts1[c + 1]):
-                single.visit_block(lanes, np.uint64(base1) + np.uint64(b) * np.uint64(single.BLOCK))
+            if middle > first:  # each call counts references to its arrays: none for nothing
+                handoff.hand_in(lanes, now[0], layouts[0], first, middle, far)
+                visit_blocks(lanes, np.uint64(first) * np.uint64(BLOCK), middle - first, True)
+            if end > middle:
+                handoff.hand_in(lanes, now[0], layouts[0], middle, end, far)
+                visit_blocks(lanes, np.uint64(middle) * np.uint64(BLOCK), end - middle, False)
+            first, end = starts1[c], starts1[c + 1]
+            if end > first:
+                handoff.hand_in(lanes, now[1], layouts[1], first, end, far)
+                at = np.uint64(base1) + np.uint64(first) * np.uint64(single.BLOCK)
+                single.visit_blocks(lanes, at, end - first)
         if not chained or s == n - 1:
             handoff.hand_back(lanes, lasts, velocities)
         for q in range(len(alone)):

@@ -161,7 +161,7 @@ def groups(ends, k: int, colours, count: int, points: int, by_solver: bool):
     """Each contact's group for :func:`place`: its colour if it has ``points`` points; with
     ``by_solver`` (the two-point velocity lanes) 2 c for one of colour c that uses the block
     solver and 2 c + 1 for one that solves its points one after the other, so that a block
-    holds contacts solved one way only (:func:`visit_block`; within a colour the order is
+    holds contacts solved one way only (:func:`visit_blocks`; within a colour the order is
     free). Any other contact gets the number of groups (``count``, or ``2 count``): left out."""
     size = 2 * count if by_solver else count
     keys = np.empty(k, dtype=np.int64)
@@ -235,8 +235,8 @@ def unpack(contacts, lanes, owners, blocks: int) -> None:
 
 
 @njit
-def visit_block(lanes, start, block: bool) -> None:
-    """One visit of each of the block's contacts (``start``: the block's first number), as
+def visit_blocks(lanes, start, blocks: int, block: bool) -> None:
+    """One visit of each contact of ``blocks`` blocks from number ``start`` on, as
     :func:`sandbox.solvers.iterative.visit_contact` with accumulated impulses: friction within
     the cone of the current normal impulses, then the normal impulses, both points together
     (block solver) or one after the other. The lanes are independent, so this loop runs as
@@ -248,45 +248,48 @@ def visit_block(lanes, start, block: bool) -> None:
     what the other needs (a lane of each kind in one block, both were worked out and one kept:
     13 % slower)."""
     literally(block)
-    for lane in range(LANES):
-        i = start + np.uint64(lane)
-        p0, p1 = i + P0, i + P1  # where each point's fields begin
-        mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
-        nx, ny, mu = lanes[i + NX], lanes[i + NY], lanes[i + MU]
-        va = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
-        vb = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
-        # friction at each point
-        t = ny, -nx  # t = (n_y, -n_x)
-        limit = mu * lanes[p0 + NORMAL_IMPULSE]
-        rt, old = (lanes[p0 + RT_A], lanes[p0 + RT_B]), lanes[p0 + TANGENT_IMPULSE]
-        new, va, vb = friction_step(va, vb, mass, t, rt, old, lanes[p0 + TANGENT_MASS], limit)
-        lanes[p0 + TANGENT_IMPULSE] = new
-        limit = mu * lanes[p1 + NORMAL_IMPULSE]
-        rt, old = (lanes[p1 + RT_A], lanes[p1 + RT_B]), lanes[p1 + TANGENT_IMPULSE]
-        new, va, vb = friction_step(va, vb, mass, t, rt, old, lanes[p1 + TANGENT_MASS], limit)
-        lanes[p1 + TANGENT_IMPULSE] = new
-        # the normal impulses
-        n = nx, ny
-        rn1, rn2 = (lanes[p0 + RN_A], lanes[p0 + RN_B]), (lanes[p1 + RN_A], lanes[p1 + RN_B])
-        a1, a2 = lanes[p0 + NORMAL_IMPULSE], lanes[p1 + NORMAL_IMPULSE]
-        bias1, bias2 = lanes[p0 + BIAS], lanes[p1 + BIAS]
-        mass1, mass2 = lanes[p0 + NORMAL_MASS], lanes[p1 + NORMAL_MASS]
-        if block:  # together: b, the normal speeds without the impulses so far, minus the bias
-            k11, k12, k22 = lanes[i + K11], lanes[i + K12], lanes[i + K22]
-            m = lanes[i + M11], lanes[i + M12], lanes[i + M22]  # K^-1
-            b1 = speed_along(va, vb, nx, ny, rn1[0], rn1[1]) - bias1 - (k11 * a1 + k12 * a2)
-            b2 = speed_along(va, vb, nx, ny, rn2[0], rn2[1]) - bias2 - (k12 * a1 + k22 * a2)
-            x1, x2 = block_totals(a1, a2, b1, b2, k12, m, mass1, mass2)
-            va, vb = push_along(va, vb, mass, nx, ny, rn1[0], rn1[1], x1 - a1)  # P = (x1 - a1) n
-            va, vb = push_along(va, vb, mass, nx, ny, rn2[0], rn2[1], x2 - a2)
-        else:  # one after the other (the second point sees what the first one's impulse did)
-            x1, va, vb = normal_step(va, vb, mass, n, rn1, a1, mass1, bias1)
-            x2, va, vb = normal_step(va, vb, mass, n, rn2, a2, mass2, bias2)
-        lanes[p0 + NORMAL_IMPULSE], lanes[p1 + NORMAL_IMPULSE] = x1, x2
-        lanes[p0 + MAX_NORMAL_IMPULSE] = max(lanes[p0 + MAX_NORMAL_IMPULSE], x1)
-        lanes[p1 + MAX_NORMAL_IMPULSE] = max(lanes[p1 + MAX_NORMAL_IMPULSE], x2)
-        lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
-        lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
+    for nb in range(blocks):  # one call a group, not a block: each call counts references
+        for lane in range(LANES):
+            i = start + np.uint64(nb) * np.uint64(BLOCK) + np.uint64(lane)
+            p0, p1 = i + P0, i + P1  # where each point's fields begin
+            mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
+            nx, ny, mu = lanes[i + NX], lanes[i + NY], lanes[i + MU]
+            va = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
+            vb = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
+            # friction at each point
+            t = ny, -nx  # t = (n_y, -n_x)
+            limit = mu * lanes[p0 + NORMAL_IMPULSE]
+            rt, old = (lanes[p0 + RT_A], lanes[p0 + RT_B]), lanes[p0 + TANGENT_IMPULSE]
+            new, va, vb = friction_step(va, vb, mass, t, rt, old, lanes[p0 + TANGENT_MASS], limit)
+            lanes[p0 + TANGENT_IMPULSE] = new
+            limit = mu * lanes[p1 + NORMAL_IMPULSE]
+            rt, old = (lanes[p1 + RT_A], lanes[p1 + RT_B]), lanes[p1 + TANGENT_IMPULSE]
+            new, va, vb = friction_step(va, vb, mass, t, rt, old, lanes[p1 + TANGENT_MASS], limit)
+            lanes[p1 + TANGENT_IMPULSE] = new
+            # the normal impulses
+            n = nx, ny
+            rn1, rn2 = (lanes[p0 + RN_A], lanes[p0 + RN_B]), (lanes[p1 + RN_A], lanes[p1 + RN_B])
+            a1, a2 = lanes[p0 + NORMAL_IMPULSE], lanes[p1 + NORMAL_IMPULSE]
+            bias1, bias2 = lanes[p0 + BIAS], lanes[p1 + BIAS]
+            mass1, mass2 = lanes[p0 + NORMAL_MASS], lanes[p1 + NORMAL_MASS]
+            if block:  # together: b, the normal speeds without the impulses so far, minus the bias
+                k11, k12, k22 = lanes[i + K11], lanes[i + K12], lanes[i + K22]
+                m = lanes[i + M11], lanes[i + M12], lanes[i + M22]  # K^-1
+                b1 = speed_along(va, vb, nx, ny, rn1[0], rn1[1]) - bias1 - (k11 * a1 + k12 * a2)
+                b2 = speed_along(va, vb, nx, ny, rn2[0], rn2[1]) - bias2 - (k12 * a1 + k22 * a2)
+                x1, x2 = block_totals(a1, a2, b1, b2, k12, m, mass1, mass2)
+                va, vb = push_along(
+                    va, vb, mass, nx, ny, rn1[0], rn1[1], x1 - a1
+                )  # P = (x1 - a1) n
+                va, vb = push_along(va, vb, mass, nx, ny, rn2[0], rn2[1], x2 - a2)
+            else:  # one after the other (the second point sees what the first one's impulse did)
+                x1, va, vb = normal_step(va, vb, mass, n, rn1, a1, mass1, bias1)
+                x2, va, vb = normal_step(va, vb, mass, n, rn2, a2, mass2, bias2)
+            lanes[p0 + NORMAL_IMPULSE], lanes[p1 + NORMAL_IMPULSE] = x1, x2
+            lanes[p0 + MAX_NORMAL_IMPULSE] = max(lanes[p0 + MAX_NORMAL_IMPULSE], x1)
+            lanes[p1 + MAX_NORMAL_IMPULSE] = max(lanes[p1 + MAX_NORMAL_IMPULSE], x2)
+            lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
+            lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
 
 
 @njit

@@ -138,7 +138,7 @@ def pack(contacts, bodies, lanes, owners, blocks: int, bounds) -> None:
 def visit_block(lanes, start, beta: float) -> None:
     """One push of each point of the block's contacts (``start``: the block's first number),
     the first point and then the second, as the record pass does. As
-    :func:`sandbox.solvers.wide.visit_block`, the loop reads and writes ``lanes`` itself, so
+    :func:`sandbox.solvers.wide.visit_blocks`, the loop reads and writes ``lanes`` itself, so
     it runs as vector instructions; a push that does not happen is one of zero."""
     for lane in range(LANES):
         i = start + np.uint64(lane)

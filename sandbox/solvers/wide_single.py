@@ -79,28 +79,29 @@ def unpack(contacts, lanes, owners, blocks: int) -> None:
 
 
 @njit
-def visit_block(lanes, start) -> None:
-    """One visit of each of the block's contacts (``start``: the block's first number), as
-    :func:`sandbox.solvers.wide.visit_block` for one point: the loop reads and writes
+def visit_blocks(lanes, start, blocks: int) -> None:
+    """One visit of each contact of ``blocks`` blocks from number ``start`` on, as
+    :func:`sandbox.solvers.wide.visit_blocks` for one point: the loop reads and writes
     ``lanes`` itself, so it runs as vector instructions."""
-    for lane in range(LANES):
-        i = start + np.uint64(lane)
-        mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
-        nx, ny, mu = lanes[i + NX], lanes[i + NY], lanes[i + MU]
-        va = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
-        vb = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
-        p = i + P  # where the point's fields begin
-        # friction within the cone of the current normal impulse, t = (n_y, -n_x)
-        rt, limit = (lanes[p + RT_A], lanes[p + RT_B]), mu * lanes[p + NORMAL_IMPULSE]
-        old, tangent_mass = lanes[p + TANGENT_IMPULSE], lanes[p + TANGENT_MASS]
-        new, va, vb = friction_step(va, vb, mass, (ny, -nx), rt, old, tangent_mass, limit)
-        lanes[p + TANGENT_IMPULSE] = new
-        # the normal impulse
-        rn, old = (lanes[p + RN_A], lanes[p + RN_B]), lanes[p + NORMAL_IMPULSE]
-        new, va, vb = normal_step(
-            va, vb, mass, (nx, ny), rn, old, lanes[p + NORMAL_MASS], lanes[p + BIAS]
-        )
-        lanes[p + NORMAL_IMPULSE] = new
-        lanes[p + MAX_NORMAL_IMPULSE] = max(lanes[p + MAX_NORMAL_IMPULSE], new)
-        lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
-        lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
+    for nb in range(blocks):  # one call a group, not a block: each call counts references
+        for lane in range(LANES):
+            i = start + np.uint64(nb) * np.uint64(BLOCK) + np.uint64(lane)
+            mass = lanes[i + IM_A], lanes[i + II_A], lanes[i + IM_B], lanes[i + II_B]
+            nx, ny, mu = lanes[i + NX], lanes[i + NY], lanes[i + MU]
+            va = lanes[i + VAX], lanes[i + VAY], lanes[i + WA]
+            vb = lanes[i + VBX], lanes[i + VBY], lanes[i + WB]
+            p = i + P  # where the point's fields begin
+            # friction within the cone of the current normal impulse, t = (n_y, -n_x)
+            rt, limit = (lanes[p + RT_A], lanes[p + RT_B]), mu * lanes[p + NORMAL_IMPULSE]
+            old, tangent_mass = lanes[p + TANGENT_IMPULSE], lanes[p + TANGENT_MASS]
+            new, va, vb = friction_step(va, vb, mass, (ny, -nx), rt, old, tangent_mass, limit)
+            lanes[p + TANGENT_IMPULSE] = new
+            # the normal impulse
+            rn, old = (lanes[p + RN_A], lanes[p + RN_B]), lanes[p + NORMAL_IMPULSE]
+            new, va, vb = normal_step(
+                va, vb, mass, (nx, ny), rn, old, lanes[p + NORMAL_MASS], lanes[p + BIAS]
+            )
+            lanes[p + NORMAL_IMPULSE] = new
+            lanes[p + MAX_NORMAL_IMPULSE] = max(lanes[p + MAX_NORMAL_IMPULSE], new)
+            lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
+            lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
