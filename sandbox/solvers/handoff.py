@@ -32,7 +32,6 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.prefetch import prefetch_address
 from sandbox.solvers import wide, wide_single
 from sandbox.solvers.wide import LANES
 
@@ -42,11 +41,6 @@ NEXT_FIELD = np.uint64(LANES)
 OTHER_BODY = wide.VBX - wide.VAX
 assert wide_single.VBX - wide_single.VAX == OTHER_BODY
 OTHER = int(OTHER_BODY)
-# lanes of more numbers than this (256 KB, half a core's second-level cache on the project's
-# machine) hand on velocities from further away: :func:`hand_in` asks for the sources of the
-# block AHEAD blocks on before it copies a block's
-FAR = 32768
-AHEAD = 2
 
 
 @njit
@@ -111,10 +105,12 @@ def plan(order, owners, layouts, rows: int):
     for j in range(m):  # in a later sweep, a body's first lanes take its last of the sweep before
         layout, side, q = later_firsts[j, 0], later_firsts[j, 1], later_firsts[j, 2]
         sources[1][layout][side, q] = last[firsts[j, 1]]
-    held = np.flatnonzero(last >= 0)
-    lasts = np.empty((len(held), 2), dtype=np.int64)
-    lasts[:, 0], lasts[:, 1] = held, last[held]
-    return sources, firsts[:m], lasts
+    lasts, n = np.empty((rows, 2), dtype=np.int64), 0
+    for body in range(rows):
+        if last[body] >= 0:
+            lasts[n, 0], lasts[n, 1] = body, last[body]
+            n += 1
+    return sources, firsts[:m], lasts[:n]
 
 
 @njit
@@ -126,21 +122,13 @@ def prime(lanes, firsts, velocities) -> None:
 
 
 @njit
-def hand_in(lanes, sources, layout: tuple, first: int, end: int, far: bool) -> None:
+def hand_in(lanes, sources, layout: tuple, first: int, end: int) -> None:
     """Each lane of blocks ``first`` to ``end`` of a layout takes its bodies' velocities from
     their sources (:func:`plan`). A whole group at once, before its visits: their vector loads
     right after single stores into the same numbers would wait for the stores to finish."""
     base, size, at = layout
-    address = lanes.ctypes.data
     for b in range(first, end):
         start = np.uint64(base) + np.uint64(b) * np.uint64(size) + at
-        if far and b + AHEAD < end:
-            for r in range((b + AHEAD) * LANES, (b + AHEAD + 1) * LANES):
-                for side in range(2):
-                    src = address + 8 * sources[side, r]
-                    prefetch_address(src)
-                    prefetch_address(src + 64)
-                    prefetch_address(src + 128)
         for lane in range(LANES):
             q, i = b * LANES + lane, start + np.uint64(lane)
             for side in range(2):

@@ -268,7 +268,6 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     # with nothing between the colours but the colours, the lanes keep the velocities from one
     # sweep to the next; joints and the contacts no colour takes read and write the rows
     chained = len(joints) == 0 and len(alone) == 0
-    far = len(lanes) > handoff.FAR
     for s in range(n):
         if len(joints) > 0:  # joints read and write the bodies' records
             put_velocities(velocities, bodies)
@@ -281,14 +280,14 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
         for c in range(count):
             first, middle, end = starts[2 * c], starts[2 * c + 1], starts[2 * c + 2]
             if middle > first:  # each call counts references to its arrays: none for nothing
-                handoff.hand_in(lanes, now[0], layouts[0], first, middle, far)
+                handoff.hand_in(lanes, now[0], layouts[0], first, middle)
                 visit_blocks(lanes, np.uint64(first) * np.uint64(BLOCK), middle - first, True)
             if end > middle:
-                handoff.hand_in(lanes, now[0], layouts[0], middle, end, far)
+                handoff.hand_in(lanes, now[0], layouts[0], middle, end)
                 visit_blocks(lanes, np.uint64(middle) * np.uint64(BLOCK), end - middle, False)
             first, end = starts1[c], starts1[c + 1]
             if end > first:
-                handoff.hand_in(lanes, now[1], layouts[1], first, end, far)
+                handoff.hand_in(lanes, now[1], layouts[1], first, end)
                 at = np.uint64(base1) + np.uint64(first) * np.uint64(single.BLOCK)
                 single.visit_blocks(lanes, at, end - first)
         if not chained or s == n - 1:
