@@ -23,7 +23,7 @@ Found on the rain of 5,000 discs (steps 150 to 450), the project's 2-core machin
 position passes (``penetration.position_impulses``) 19 % of the step; the velocity sweeps'
 visits (in ``iterative.coloured_sweeps``) 14 %, and their copies of the bodies' velocities into
 and out of the lanes (``wide.lanes_in``, ``wide.lanes_out``) 13 % (now each lane takes them
-from the lane that last held them: ``handoff.hand_in`` 9 %, ``handoff.plan`` 2 %); the prepare
+from the lane that last held them: ``handoff.hand_in`` 10 %, ``handoff.plan`` 2 %); the prepare
 9 %; the narrowphase 8 %. It also found numba's reference counts (``NRT_incref``, ``NRT_decref``) at 5 %
 of the step: the narrowphase's per-pair function reference-counted the polygons' array on
 every call; inlined, and two circles kept off that array, they are gone.
