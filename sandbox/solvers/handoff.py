@@ -43,6 +43,15 @@ assert wide_single.VBX - wide_single.VAX == OTHER_BODY
 OTHER = int(OTHER_BODY)
 
 
+@njit(inline="always")  # numbers only: nothing to count references to
+def velocity_at(layout: tuple, q: int) -> int:
+    """Where lane ``q`` of a layout keeps body a's vx (body b's is :data:`OTHER` on):
+    ``layout`` = (first number of its blocks, numbers per block, where its velocities begin),
+    lane ``q`` in block ``q // LANES`` (:mod:`sandbox.solvers.wide`'s layout)."""
+    base, size, at = layout
+    return base + (q // LANES) * size + np.int64(at) + q % LANES
+
+
 @njit
 def sweep_order(starts, starts1, count: int):
     """(g, 3): the groups of a sweep in order, each its layout (0: two points, 1: one) and its
@@ -86,9 +95,8 @@ def plan(order, owners, layouts, rows: int):
     for g in range(len(order)):
         layout, first, end = order[g, 0], order[g, 1], order[g, 2]
         ids, now, later = owners[layout], sources[0][layout], sources[1][layout]
-        base, size, at = layouts[layout]
         for q in range(first * LANES, end * LANES):  # where each body was before the group
-            here = base + (q // LANES) * size + np.int64(at) + q % LANES
+            here = velocity_at(layouts[layout], q)
             for side in range(2):
                 body = ids[1 + side, q]
                 if last[body] >= 0:
@@ -100,7 +108,7 @@ def plan(order, owners, layouts, rows: int):
                     m += 1
                 here += OTHER
         for q in range(first * LANES, end * LANES):  # the group's last lane of a body hands on
-            here = base + (q // LANES) * size + np.int64(at) + q % LANES
+            here = velocity_at(layouts[layout], q)
             last[ids[1, q]], last[ids[2, q]] = here, here + OTHER
     for j in range(m):  # in a later sweep, a body's first lanes take its last of the sweep before
         layout, side, q = later_firsts[j, 0], later_firsts[j, 1], later_firsts[j, 2]
