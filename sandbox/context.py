@@ -47,7 +47,8 @@ def fill_context(ctx, settings, gravity: np.ndarray, dt: float) -> None:
     # the soft step's contacts carry their own sag under a heavy load (g / omega^2 per load):
     # holding the light body would fight it, so only overlap makes its passes go in layers
     ctx["hold_heavier"] = s.robust_positions and s.solver != "soft"
-    ctx["block_solver"] = s.solver != "soft"  # the prepare stage's block matrices: none in soft
+    # the prepare stage's block matrices and warm start: none in soft (it warm starts per substep)
+    ctx["block_solver"] = s.solver != "soft"
     # overlap beyond the slop plus one step's bounded push (m) is pushed out at max_push_speed
     # by the position passes (sandbox.solvers.wide_positions.allowed_separation); infinite: never
     deep = s.slop + s.max_push_speed * dt

@@ -289,7 +289,8 @@ CONTEXT = np.dtype(
         ("robust_positions", np.bool_),  # position passes from the ground up (shock order)
         ("hold_heavier", np.bool_),  # ... also in layers when a body rests on a much lighter one
         ("block_solver", np.bool_),  # the prepare stage readies the block solver's matrices
-        # (the rigid solvers have one, the soft step none)
+        # and warm starts the contacts (the rigid solvers; the soft step has no block solver
+        # and warm starts in each substep)
         ("deep_overlap", F8),  # m: overlap at a step's start beyond which the push is bounded
         ("slop", F8),
         ("position_tolerance", F8),  # m: the position passes stop once no overlap is deeper

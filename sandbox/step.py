@@ -6,14 +6,16 @@ The stages, in order, each a function named after what it does:
 1. ``find_pairs``            broadphase: shapes whose boxes overlap (:mod:`sandbox.broadphase`)
 2. ``collide``               narrowphase: contact manifolds at the current poses
                              (:mod:`sandbox.narrowphase`), as CONTACT records
-3. ``prepare_contacts``      effective masses, approach speeds (before gravity), and last step's
-                             impulses found again for warm starting (:mod:`sandbox.solvers.common`)
-4. ``integrate_velocities``  gravity and forces: v += a dt, the integrator's increment
-                             (:mod:`sandbox.integrators`)
-5. ``prepare_joints``        arms, effective masses, targets (:mod:`sandbox.joints.solve`)
-6. ``warm_start``            last step's impulses applied again
+3. ``integrate_velocities``  gravity and forces: v += a dt, the integrator's increment
+                             (:mod:`sandbox.integrators`), after keeping the velocities the
+                             bodies arrived with, for the approach speeds
+4. ``prepare_joints``        arms, effective masses, targets (:mod:`sandbox.joints.solve`)
+5. ``prepare_contacts``      effective masses, approach speeds (at the velocities before
+                             gravity), last step's impulses found again and applied again
+                             (warm starting: :mod:`sandbox.solvers.common`), in one pass
+6. ``warm_start``            the joints' last impulses applied again
 7. ``solve``                 the solver's sweeps over contacts and joints (``settings.solver``)
-8. ``restitution``           bounces, from the approach speeds of stage 3
+8. ``restitution``           bounces, from the approach speeds of stage 5
 9. ``integrate_positions``   p += dp + (v - v_free) dt; continuous collision may shorten it
                              (:mod:`sandbox.toi`)
 10. ``fix_positions``        the penetration fix and the joints' position pass
@@ -67,6 +69,7 @@ from sandbox.sleep import fall_asleep, moving_kinematic, wake_touched
 from sandbox.sleeping_contacts import wake_contacts
 from sandbox.solvers import SOLVERS, iterative
 from sandbox.solvers.common import (
+    arrived_velocities,
     count_points,
     match_previous,
     prepare_contacts,
@@ -86,9 +89,9 @@ from sandbox.toi import hold_stopped, limit_ccd_motion
 STAGES = (
     "find_pairs",
     "collide",
-    "prepare_contacts",
     "integrate_velocities",
     "prepare_joints",
+    "prepare_contacts",
     "warm_start",
     "solve",
     "restitution",
@@ -196,39 +199,34 @@ def boxes_hold(shapes, vertices, bodies, reach, proxies) -> bool:
 
 
 @njit
-def prepare(contacts, k: int, kept, shapes, bodies, context) -> None:
-    """Stage 3: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
-    when ``context["block_solver"]`` says so: the soft step has none), then the warm-start
-    impulses, from ``kept`` = (the last step's contacts, the store of sleeping islands'
+def prepare(contacts, k: int, kept, shapes, moving, context) -> None:
+    """Stage 5: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
+    when ``context["block_solver"]`` says so: the soft step has none), with the warm-start
+    impulses from ``kept`` = (the last step's contacts, the store of sleeping islands'
     contacts): the contacts of islands that just woke from the store
-    (:func:`sandbox.sleeping_contacts.wake_contacts`), the others from the last step's. Without
-    such islands the last step's come in the prepare loop itself, as it goes (one pass over the
-    records instead of two)."""
+    (:func:`sandbox.sleeping_contacts.wake_contacts`), the others from the last step's.
+    ``moving`` = (the BODY records, their velocities as the step began:
+    :func:`sandbox.solvers.common.arrived_velocities`). The rigid steps (those with a block
+    solver) warm start the contacts here too: without such islands in the prepare loop itself,
+    as it goes (one pass over the records instead of three); the soft step warm starts them
+    in each substep."""
     ctx = context[0]
     previous, store = kept
     warm = ctx["warm_start"]
     k_old = ctx["contact_count"][ctx["contact_set"]] if warm else 0
     stored = warm and ctx["contact_count"][STORE] > 0
-    block = ctx["block_solver"]
+    block = ctx["block_solver"]  # a rigid step: the warm start here (none in the soft step)
     # the last step's impulses in the same loop, unless islands woke: theirs come first
-    found = prepare_contacts(
-        contacts, k, shapes, bodies, 0.0, context, block, (previous, 0 if stored else k_old)
-    )
+    last = (previous, 0 if stored else k_old, warm and block and not stored)
+    found = prepare_contacts(contacts, k, shapes, moving, 0.0, context, block, last)
     if stored:
-        found = wake_contacts(contacts, k, bodies, store, context, (previous, k_old))
+        found = wake_contacts(contacts, k, moving[0], store, context, (previous, k_old))
         found += match_previous(contacts, k, previous, k_old)
+        if block:
+            warm_start(contacts, k, moving[0])
     if not warm:
         ctx["contact_count"][STORE] = 0  # nothing warm starts: the kept contacts would go stale
     ctx["warm_started_points"] = found
-
-
-@njit
-def warm_start_all(contacts, k: int, joints, bodies, context) -> None:
-    """Stage 6: contacts (when warm starting) and joints."""
-    ctx = context[0]
-    if ctx["warm_start"]:
-        warm_start(contacts, k, bodies)
-    warm_start_joints(joints, bodies)
 
 
 @njit
@@ -317,11 +315,12 @@ def fast_step(
     k = find_contacts(shapes, vertices, bodies, joints, proxies, pairs, contacts, context)
     if k < 0:
         return k
-    prepare(contacts, k, (previous, sets[STORE]), shapes, bodies, context)
+    arrived = arrived_velocities(bodies)  # stage 5 measures the approach speeds at these
     gather_forces(bodies)
     integrate_velocities(model, context, ctx["dt"], work)
     prepare_joints(joints, bodies, context)
-    warm_start_all(contacts, k, joints, bodies, context)
+    prepare(contacts, k, (previous, sets[STORE]), shapes, (bodies, arrived), context)
+    warm_start_joints(joints, bodies)
     iterative.solve(contacts, k, joints, bodies, context)
     restitution(contacts, k, bodies, ctx["restitution_threshold"])
     plan_motion(bodies, ctx["dt"])
@@ -380,7 +379,7 @@ def begin_soft(contacts, k: int, kept, model, context) -> None:
     bodies, shapes, joints = model[0], model[1], model[3]
     for i in range(bodies.shape[0]):
         bodies[i]["delta_position"][0] = bodies[i]["delta_position"][1] = 0.0
-    prepare(contacts, k, kept, shapes, bodies, context)
+    prepare(contacts, k, kept, shapes, (bodies, arrived_velocities(bodies)), context)
     ctx = context[0]
     if ctx["hold_ratio"] > 0.0:
         hold_under_heavy_loads(contacts, k, bodies, context)
@@ -509,14 +508,15 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
         clock.lap("collide")
     if world.settings.solver == "soft":
         return staged_soft(world, (contacts, k, previous), a, clock)
-    prepare(contacts, k, (previous, sets[STORE]), a.shapes, a.bodies, a.context)
-    clock.lap("prepare_contacts")
+    arrived = arrived_velocities(a.bodies)
     gather_forces(a.bodies)
     integrate_velocities(model, a.context, ctx["dt"], a.work)
     clock.lap("integrate_velocities")
     prepare_joints(a.joints, a.bodies, a.context)
     clock.lap("prepare_joints")
-    warm_start_all(contacts, k, a.joints, a.bodies, a.context)
+    prepare(contacts, k, (previous, sets[STORE]), a.shapes, (a.bodies, arrived), a.context)
+    clock.lap("prepare_contacts")
+    warm_start_joints(a.joints, a.bodies)
     clock.lap("warm_start")
     SOLVERS[world.settings.solver].solve(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("solve")

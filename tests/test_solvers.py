@@ -15,7 +15,12 @@ from sandbox import Body, Box, Circle, World, math2d, penetration
 from sandbox.contact import Manifolds
 from sandbox.records import BODY, CONTACT, STATIC
 from sandbox.solvers import SOLVERS, pairwise, shock
-from sandbox.solvers.common import match_previous, prepare_contacts, restitution
+from sandbox.solvers.common import (
+    arrived_velocities,
+    match_previous,
+    prepare_contacts,
+    restitution,
+)
 
 
 # --- the formulas -----------------------------------------------------------------------------
@@ -80,7 +85,10 @@ def solve(w, m, push=0.0):
     (m/s) to the disc's x velocity, as gravity would, then solve and restitution."""
     w._prepare(w.dt)
     k = len(m)
-    prepare_contacts(m.records, k, w._geometry.table, w.state, 0.0, w.context, True, (m.records, 0))
+    moving = (w.state, arrived_velocities(w.state))
+    prepare_contacts(
+        m.records, k, w._geometry.table, moving, 0.0, w.context, True, (m.records, 0, False)
+    )
     w.vel[0, 0] += push
     SOLVERS[w.settings.solver].solve(m.records, k, w.joint_table, w.state, w.context)
     restitution(m.records, k, w.state, w.settings.restitution_threshold)
@@ -281,9 +289,9 @@ def overlap_world(method, static_a=False):
 def prepare(w, m):
     """The prepare stage on hand-built contacts (lever arms in each body's frame)."""
     w._prepare(w.dt)
-    prepare_contacts(
-        m.records, len(m), w._geometry.table, w.state, 0.0, w.context, True, (m.records, 0)
-    )
+    moving = (w.state, arrived_velocities(w.state))
+    last = (m.records, 0, False)  # nothing of a last step, nothing warm started
+    prepare_contacts(m.records, len(m), w._geometry.table, moving, 0.0, w.context, True, last)
 
 
 def correct(w, m, passes=1):
