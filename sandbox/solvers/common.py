@@ -332,9 +332,8 @@ def restitution(contacts, k: int, bodies, threshold: float) -> None:
     closer. ``rebound`` records that distance for the position stage
     (:func:`sandbox.penetration.rebound`), so the bounce starts from the surface.
     """
-    for i in range(k):
-        c = contacts[i]
-        c["rebound"] = 0.0
+    for i in range(k):  # rebound is 0 from the prepare stage: a resting contact's record is
+        c = contacts[i]  # only read here (writing it made every record's line dirty)
         e = c["restitution"]
         if e == 0.0:
             continue
