@@ -70,7 +70,6 @@ from sandbox.sleeping_contacts import wake_contacts
 from sandbox.solvers import SOLVERS, iterative
 from sandbox.solvers.common import (
     arrived_velocities,
-    count_points,
     match_previous,
     prepare_contacts,
     restitution,
@@ -289,10 +288,9 @@ def settle(contacts, k: int, joints, bodies, context) -> None:
 
 @njit
 def finish_step(contacts, k: int, joints, bodies, context) -> int:
-    """The end of every step: count the contact points, clear the forces, let islands at rest
-    fall asleep (:func:`settle`), keep the impulses (:func:`store_impulses`, whose status it
-    returns)."""
-    context[0]["contact_points"] = count_points(contacts, k)
+    """The end of every step: clear the forces, let islands at rest fall asleep
+    (:func:`settle`), keep the impulses (:func:`store_impulses`, whose status it returns). The
+    contact points were counted in the prepare stage."""
     clear_forces(bodies)
     settle(contacts, k, joints, bodies, context)
     return store_impulses(k, bodies, context)

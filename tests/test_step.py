@@ -40,6 +40,18 @@ def test_compiled_step_equals_the_staged_step():
     assert set(staged.timer.seconds) == set(STAGES) and sum(staged.timer.seconds.values()) > 0
 
 
+@pytest.mark.parametrize("solver", ["iterative", "soft"])
+def test_the_step_counts_the_points_it_handed_out(solver):
+    # the prepare stage counts the contacts' points as it goes (no pass of its own at the end):
+    # the count is the handed-out manifolds', on both paths, discs (one point) and boxes (two)
+    fast, staged = fast_and_staged(lambda: pile(solver=solver), 60)
+    for w in (fast, staged):
+        m = w.manifolds
+        counts = np.bincount(m.count, minlength=3)
+        assert counts[1] > 0 and counts[2] > 0, counts
+        assert w.stats["contact_points"] == int(np.sum(m.count)) > w.stats["contacts"]
+
+
 def test_every_broadphase_gives_the_same_step():
     # the broadphases return the same sorted pair list, so the simulation is identical
     reference = run(pile("sap"), 40)

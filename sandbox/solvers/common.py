@@ -193,7 +193,8 @@ def prepare_contacts(
     speeds are measured at); ``last`` = (the last step's contacts, how many of them: 0 for
     none, whether to warm start here). ``beta``: the Baumgarte factor of the velocity bias (the
     rigid solvers pass 0 and fix overlap on positions instead). Returns the number of points
-    warm started.
+    warm started; counts the contacts' points into ``context["contact_points"]`` (a pass of
+    its own read a line of every record again: 85 to 106 us on the rain of 5,000).
 
     The warm start's merge and the warm start itself run in this loop, while the contact's
     record is at hand: each as a pass of its own read every record again. On the rain of
@@ -204,7 +205,7 @@ def prepare_contacts(
     inv_dt, slop = ctx["inv_dt"], ctx["slop"]
     bodies = moving[0]
     previous, k_old, warm_now = last
-    found = q = 0
+    found = q = points_in_all = 0
     for i in range(k):
         c = contacts[i]
         a, b = bodies[c["a"]], bodies[c["b"]]
@@ -213,6 +214,7 @@ def prepare_contacts(
         c["rebound"] = 0.0
         c["soft_impulse_scale"] = 0.0  # a rigid contact: no load sag (the soft step sets it)
         points, count = c["points"], c["count"]
+        points_in_all += count
         for j in range(2):
             p = points[j]
             p["normal_impulse"] = p["tangent_impulse"] = 0.0
@@ -235,6 +237,7 @@ def prepare_contacts(
                 found += carry_points(c, previous[q])
         if warm_now:
             warm_start_contact(c, bodies)
+    ctx["contact_points"] = points_in_all
     return found
 
 
@@ -352,12 +355,3 @@ def restitution(contacts, k: int, bodies, threshold: float) -> None:
             c["rebound"] = max(c["rebound"], (1.0 + e) * -p["depth"])
         set_velocity(bodies, c["a"], va)
         set_velocity(bodies, c["b"], vb)
-
-
-@njit
-def count_points(contacts, k: int) -> int:
-    """How many contact points the first ``k`` contacts hold."""
-    points = 0
-    for i in range(k):
-        points += contacts[i]["count"]
-    return points
