@@ -126,6 +126,21 @@ def set_velocity(bodies, i: int, v: tuple) -> None:
     b["omega"] = v[2]
 
 
+@njit
+def take_velocities(bodies, velocities) -> None:
+    """Each body's (vx, vy, w) into its row of ``velocities`` (the sweeps read them there,
+    three numbers side by side, rather than from the body's whole record)."""
+    for i in range(len(bodies)):
+        velocities[i, 0], velocities[i, 1], velocities[i, 2] = velocity_of(bodies, i)
+
+
+@njit
+def put_velocities(velocities, bodies) -> None:
+    """The rows of ``velocities`` back into the bodies."""
+    for i in range(len(bodies)):
+        set_velocity(bodies, i, (velocities[i, 0], velocities[i, 1], velocities[i, 2]))
+
+
 @njit(inline="always")  # compiled into its callers: the wide position passes vectorise it
 def turn_small(c: float, s: float, d: float) -> tuple[float, float]:
     """(c, s) turned by about d radians, for the small turns within the position passes: by

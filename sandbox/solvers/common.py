@@ -37,6 +37,7 @@ from sandbox.math2d import (
     rotate,
     set_velocity,
     speed_along,
+    take_velocities,
     unrotate,
     velocity_of,
 )
@@ -108,13 +109,13 @@ def anchor(shape, cs, local, rx: float, ry: float, nx: float, ny: float) -> floa
     return (rx - cx) * nx + (ry - cy) * ny if round_ else 0.0
 
 
-@njit
+@njit(inline="always")
 def arrived_velocities(bodies) -> np.ndarray:
     """(n, 3): every body's (vx, vy, w) (m/s, rad/s) as the step began, before this step's
-    gravity and forces: the velocities the approach speeds are measured at."""
+    gravity and forces (:func:`sandbox.math2d.take_velocities`): the velocities the approach
+    speeds are measured at."""
     arrived = np.empty((bodies.shape[0], 3))
-    for i in range(bodies.shape[0]):
-        arrived[i, 0], arrived[i, 1], arrived[i, 2] = velocity_of(bodies, i)
+    take_velocities(bodies, arrived)
     return arrived
 
 

@@ -36,7 +36,14 @@ import numpy as np
 
 from sandbox.jit import JIT_ENABLED, OFF, ON, njit
 from sandbox.joints.solve import solve_joint_velocities
-from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
+from sandbox.math2d import (
+    push_along,
+    put_velocities,
+    set_velocity,
+    speed_along,
+    take_velocities,
+    velocity_of,
+)
 from sandbox.solvers import handoff
 from sandbox.solvers import wide_single as single
 from sandbox.solvers.common import masses, normal_speed
@@ -52,8 +59,6 @@ from sandbox.solvers.wide import (
     has_two_points,
     pack,
     place,
-    put_velocities,
-    take_velocities,
     unpack,
     visit_blocks,
 )

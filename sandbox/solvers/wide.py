@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 from sandbox.jit import literally, njit
-from sandbox.math2d import push_along, set_velocity, speed_along, velocity_of
+from sandbox.math2d import push_along, speed_along
 from sandbox.solvers.impulses import block_totals, friction_step, normal_step
 
 LANES = 8  # contacts a block holds: one AVX-512 register of doubles
@@ -278,9 +278,8 @@ def visit_blocks(lanes, start, blocks: int, block: bool) -> None:
                 b1 = speed_along(va, vb, nx, ny, rn1[0], rn1[1]) - bias1 - (k11 * a1 + k12 * a2)
                 b2 = speed_along(va, vb, nx, ny, rn2[0], rn2[1]) - bias2 - (k12 * a1 + k22 * a2)
                 x1, x2 = block_totals(a1, a2, b1, b2, k12, m, mass1, mass2)
-                va, vb = push_along(
-                    va, vb, mass, nx, ny, rn1[0], rn1[1], x1 - a1
-                )  # P = (x1 - a1) n
+                # P = (x1 - a1) n at point 1, then (x2 - a2) n at point 2
+                va, vb = push_along(va, vb, mass, nx, ny, rn1[0], rn1[1], x1 - a1)
                 va, vb = push_along(va, vb, mass, nx, ny, rn2[0], rn2[1], x2 - a2)
             else:  # one after the other (the second point sees what the first one's impulse did)
                 x1, va, vb = normal_step(va, vb, mass, n, rn1, a1, mass1, bias1)
@@ -290,18 +289,3 @@ def visit_blocks(lanes, start, blocks: int, block: bool) -> None:
             lanes[p1 + MAX_NORMAL_IMPULSE] = max(lanes[p1 + MAX_NORMAL_IMPULSE], x2)
             lanes[i + VAX], lanes[i + VAY], lanes[i + WA] = va
             lanes[i + VBX], lanes[i + VBY], lanes[i + WB] = vb
-
-
-@njit
-def take_velocities(bodies, velocities) -> None:
-    """Each body's (vx, vy, w) into its row of ``velocities`` (the sweeps read them there,
-    three numbers side by side, rather than from the body's whole record)."""
-    for i in range(len(bodies)):
-        velocities[i, 0], velocities[i, 1], velocities[i, 2] = velocity_of(bodies, i)
-
-
-@njit
-def put_velocities(velocities, bodies) -> None:
-    """The rows of ``velocities`` back into the bodies."""
-    for i in range(len(bodies)):
-        set_velocity(bodies, i, (velocities[i, 0], velocities[i, 1], velocities[i, 2]))
