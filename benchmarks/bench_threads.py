@@ -93,13 +93,16 @@ def collide_slots(pairs, npairs, shapes, wp, bodies, joints, reach, contacts) ->
     for q in numba.prange(npairs):
         contacts[q]["count"] = 0
         i, j = pairs[q, 0], pairs[q, 1]  # the skips and the writing of collide_into
-        a, b = shapes[i]["body"], shapes[j]["body"]
-        margin = base + closing_reach(bodies[a], shapes[i], bodies[b], shapes[j], ahead)
-        if a == b or not within_reach(shapes[i], shapes[j], bodies[a], bodies[b], margin):
+        shape_i, shape_j = shapes[i], shapes[j]
+        a, b = shape_i["body"], shape_j["body"]
+        body_a, body_b = bodies[a], bodies[b]
+        margin = base + closing_reach(body_a, shape_i, body_b, shape_j, ahead)
+        if a == b or not within_reach(shape_i, shape_j, body_a, body_b, margin):
             continue
         if joints.shape[0] > 0 and joined(joints, bodies.shape[0], a, b):
             continue
-        manifold = collide_pair(i, j, shapes, wp, bodies, margin)
+        shape_pair, body_pair = (shape_i, shape_j), (body_a, body_b)
+        manifold = collide_pair(i, j, shape_pair, body_pair, wp, margin)
         if manifold[0] > 0:
             write_manifold(contacts[q], i, j, shapes, manifold)
 
