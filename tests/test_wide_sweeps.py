@@ -223,12 +223,12 @@ def test_each_lane_takes_its_bodies_velocities_from_the_lane_that_last_held_them
     lanes[:, 0], lanes[:, LANES] = (0, 0, 1), (1, 1, 2)
     none = np.zeros((3, 0), dtype=np.int64)
     size, at = wide_single.BLOCK, wide_single.VAX
-    layouts = ((0, 0, at), (0, size, at))
+    layouts = ((0, 0, at, 0), (0, size, at, 0))
     order = handoff.sweep_order(np.zeros(5, dtype=np.int64), np.array([0, 1, 2]), 2)
     sources, firsts, lasts = handoff.plan(order, (none, lanes), layouts, 4)
     other = handoff.OTHER
     first_b, second_a = int(at) + other, size + int(at)  # body 1 in each group
-    now, later = sources[0][1], sources[1][1]
+    now, later = sources[0], sources[1]
     assert now[1, 0] == first_b  # its first lane of a sweep: primed, itself
     assert now[0, LANES] == first_b  # the second group takes it from the first
     assert later[1, 0] == second_a  # a later sweep: from its last lane of the sweep before

@@ -46,9 +46,10 @@ OTHER = int(OTHER_BODY)
 @njit(inline="always")  # numbers only: nothing to count references to
 def velocity_at(layout: tuple, q: int) -> int:
     """Where lane ``q`` of a layout keeps body a's vx (body b's is :data:`OTHER` on):
-    ``layout`` = (first number of its blocks, numbers per block, where its velocities begin),
-    lane ``q`` in block ``q // LANES`` (:mod:`sandbox.solvers.wide`'s layout)."""
-    base, size, at = layout
+    ``layout`` = (first number of its blocks, numbers per block, where its velocities begin,
+    its first lane's column in :func:`plan`'s sources), lane ``q`` in block ``q // LANES``
+    (:mod:`sandbox.solvers.wide`'s layout)."""
+    base, size, at, _ = layout
     return base + (q // LANES) * size + np.int64(at) + q % LANES
 
 
@@ -77,42 +78,40 @@ def plan(order, owners, layouts, rows: int):
 
     ``order`` (g, 3): the groups (:func:`sweep_order`); ``owners[layout][1 + side, q]``: the
     body (a row below ``rows``) of lane q's side (0: a, 1: b); ``layouts[layout]``: (first
-    number of the layout's blocks, numbers per block, where its velocities begin).
-    ``sources[sweep][layout][side, q]`` (``sweep`` 0: the first, 1: a later one): where the
-    body of lane q's side is to take its vx from, vy and w one and two fields on;
-    ``firsts`` (m, 2): each lane a body first holds in a sweep and the body (for
-    :func:`prime`); ``lasts`` (n, 2): each body held by a lane and where its last lane keeps
-    its vx (for :func:`hand_back`)."""
-    lanes = (owners[0].shape[1], owners[1].shape[1])
-    sources = (
-        (np.empty((2, lanes[0]), dtype=np.int64), np.empty((2, lanes[1]), dtype=np.int64)),
-        (np.empty((2, lanes[0]), dtype=np.int64), np.empty((2, lanes[1]), dtype=np.int64)),
-    )
-    firsts = np.empty((2 * (lanes[0] + lanes[1]), 2), dtype=np.int64)
-    later_firsts = np.empty((2 * (lanes[0] + lanes[1]), 3), dtype=np.int64)  # layout, side, q
+    number of the layout's blocks, numbers per block, where its velocities begin, its first
+    lane's column in ``sources``). ``sources[sweep, side, column + q]`` (``sweep`` 0: the
+    first, 1: a later one): where the body of the layout's lane q's side is to take its vx
+    from, vy and w one and two fields on. One array for both layouts and sweeps, not a tuple of
+    them: a tuple's arrays picked by a number are reference-counted (numba's runtime, an atomic
+    add) at every group of a sweep. ``firsts`` (m, 2): each lane a body first holds in a sweep
+    and the body (for :func:`prime`); ``lasts`` (n, 2): each body held by a lane and where its
+    last lane keeps its vx (for :func:`hand_back`)."""
+    columns = owners[0].shape[1] + owners[1].shape[1]
+    sources = np.empty((2, 2, columns), dtype=np.int64)
+    firsts = np.empty((2 * columns, 2), dtype=np.int64)
+    later_firsts = np.empty((2 * columns, 2), dtype=np.int64)  # side, column
     last = np.full(rows, -1, dtype=np.int64)
     m = 0
     for g in range(len(order)):
         layout, first, end = order[g, 0], order[g, 1], order[g, 2]
-        ids, now, later = owners[layout], sources[0][layout], sources[1][layout]
+        ids, column = owners[layout], layouts[layout][3]
         for q in range(first * LANES, end * LANES):  # where each body was before the group
             here = velocity_at(layouts[layout], q)
             for side in range(2):
                 body = ids[1 + side, q]
                 if last[body] >= 0:
-                    now[side, q] = later[side, q] = last[body]
+                    sources[0, side, column + q] = sources[1, side, column + q] = last[body]
                 else:  # the body's first lane in a sweep: primed, so it takes its own numbers
-                    now[side, q] = here
+                    sources[0, side, column + q] = here
                     firsts[m, 0], firsts[m, 1] = here, body
-                    later_firsts[m, 0], later_firsts[m, 1], later_firsts[m, 2] = layout, side, q
+                    later_firsts[m, 0], later_firsts[m, 1] = side, column + q
                     m += 1
                 here += OTHER
         for q in range(first * LANES, end * LANES):  # the group's last lane of a body hands on
             here = velocity_at(layouts[layout], q)
             last[ids[1, q]], last[ids[2, q]] = here, here + OTHER
     for j in range(m):  # in a later sweep, a body's first lanes take its last of the sweep before
-        layout, side, q = later_firsts[j, 0], later_firsts[j, 1], later_firsts[j, 2]
-        sources[1][layout][side, q] = last[firsts[j, 1]]
+        sources[1, later_firsts[j, 0], later_firsts[j, 1]] = last[firsts[j, 1]]
     lasts, n = np.empty((rows, 2), dtype=np.int64), 0
     for body in range(rows):
         if last[body] >= 0:
@@ -132,13 +131,14 @@ def prime(lanes, firsts, velocities) -> None:
 @njit
 def hand_in(lanes, sources, layout: tuple, first: int, end: int) -> None:
     """Each lane of blocks ``first`` to ``end`` of a layout takes its bodies' velocities from
-    their sources (:func:`plan`). A whole group at once, before its visits: their vector loads
-    right after single stores into the same numbers would wait for the stores to finish."""
-    base, size, at = layout
+    their sources (``sources[side, column]``: one sweep's of :func:`plan`). A whole group at
+    once, before its visits: their vector loads right after single stores into the same
+    numbers would wait for the stores to finish."""
+    base, size, at, column = layout
     for b in range(first, end):
         start = np.uint64(base) + np.uint64(b) * np.uint64(size) + at
         for lane in range(LANES):
-            q, i = b * LANES + lane, start + np.uint64(lane)
+            q, i = column + b * LANES + lane, start + np.uint64(lane)
             for side in range(2):
                 to, src = i + np.uint64(side) * OTHER_BODY, np.uint64(sources[side, q])
                 vx, vy, w = lanes[src], lanes[src + NEXT_FIELD], lanes[src + 2 * NEXT_FIELD]

@@ -265,7 +265,7 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     lanes = np.empty(base1 + blocks1 * single.BLOCK)
     pack(contacts, lanes[:base1], owners, blocks)
     single.pack(contacts, lanes[base1:], owners1, blocks1)
-    layouts = ((0, BLOCK, VAX), (base1, single.BLOCK, single.VAX))
+    layouts = ((0, BLOCK, VAX, 0), (base1, single.BLOCK, single.VAX, owners.shape[1]))
     order = handoff.sweep_order(starts, starts1, count)
     sources, firsts, lasts = handoff.plan(order, (owners, owners1), layouts, empty + 1)
     velocities = np.zeros((empty + 1, 3))
@@ -281,18 +281,18 @@ def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
         fresh = s == 0 or not chained
         if fresh:
             handoff.prime(lanes, firsts, velocities)
-        now = sources[0] if fresh else sources[1]
+        now = sources[0 if fresh else 1]
         for c in range(count):
             first, middle, end = starts[2 * c], starts[2 * c + 1], starts[2 * c + 2]
             if middle > first:  # each call counts references to its arrays: none for nothing
-                handoff.hand_in(lanes, now[0], layouts[0], first, middle)
+                handoff.hand_in(lanes, now, layouts[0], first, middle)
                 visit_blocks(lanes, np.uint64(first) * np.uint64(BLOCK), middle - first, True)
             if end > middle:
-                handoff.hand_in(lanes, now[0], layouts[0], middle, end)
+                handoff.hand_in(lanes, now, layouts[0], middle, end)
                 visit_blocks(lanes, np.uint64(middle) * np.uint64(BLOCK), end - middle, False)
             first, end = starts1[c], starts1[c + 1]
             if end > first:
-                handoff.hand_in(lanes, now[1], layouts[1], first, end)
+                handoff.hand_in(lanes, now, layouts[1], first, end)
                 at = np.uint64(base1) + np.uint64(first) * np.uint64(single.BLOCK)
                 single.visit_blocks(lanes, at, end - first)
         if not chained or s == n - 1:
