@@ -110,20 +110,30 @@ def push_along(
 
 
 @njit
+def velocity(body) -> tuple[float, float, float]:
+    """A BODY record's (vx, vy, w)."""
+    v = body["vel"]
+    return v[0], v[1], body["omega"]
+
+
+@njit
+def put_velocity(body, v: tuple) -> None:
+    """Write (vx, vy, w) into a BODY record."""
+    vel = body["vel"]
+    vel[0], vel[1] = v[0], v[1]
+    body["omega"] = v[2]
+
+
+@njit
 def velocity_of(bodies, i: int) -> tuple[float, float, float]:
     """Body i's (vx, vy, w)."""
-    b = bodies[i]
-    v = b["vel"]
-    return v[0], v[1], b["omega"]
+    return velocity(bodies[i])
 
 
 @njit
 def set_velocity(bodies, i: int, v: tuple) -> None:
     """Write (vx, vy, w) back to body i."""
-    b = bodies[i]
-    vel = b["vel"]
-    vel[0], vel[1] = v[0], v[1]
-    b["omega"] = v[2]
+    put_velocity(bodies[i], v)
 
 
 @njit

@@ -58,7 +58,7 @@ import math
 import numpy as np
 
 from sandbox.jit import njit
-from sandbox.math2d import rotate, set_velocity, velocity_of
+from sandbox.math2d import put_velocity, rotate, velocity
 from sandbox.solvers.common import (
     apply_normal,
     apply_tangent,
@@ -124,7 +124,8 @@ def prepare_soft(contacts, k: int, bodies, context) -> None:
             rax, ray = point[0] - com_a[0], point[1] - com_a[1]
             rbx, rby = point[0] - com_b[0], point[1] - com_b[1]
             p["base_separation"] = -p["anchor_depth"] - ((rbx - rax) * nx + (rby - ray) * ny)
-            p["separation"] = separation_now(c, p, bodies)  # what the first solve pass needs
+            pair = bodies[c["a"]], bodies[c["b"]]
+            p["separation"] = separation_now(c, p, pair)  # what the first solve pass needs
 
 
 @njit
@@ -202,11 +203,12 @@ def rising(lower, normal, lower_is_a: bool) -> float:
 
 
 @njit
-def separation_now(c, p, bodies) -> float:
+def separation_now(c, p, pair) -> float:
     """The point's separation after the bodies' moves this step (m, < 0 overlapping):
     s = s_base + ((dp_b - dp_a) + R_b l_b - R_a l_a) . n, the normal held fixed, l the
-    anchors (``local_a``, ``local_b``: :func:`sandbox.solvers.common.anchor`)."""
-    a, b = bodies[c["a"]], bodies[c["b"]]
+    anchors (``local_a``, ``local_b``: :func:`sandbox.solvers.common.anchor`); ``pair``: the
+    BODY records of the contact's bodies a and b."""
+    a, b = pair
     rax, ray = rotate(a["cs"][0], a["cs"][1], p["local_a"][0], p["local_a"][1])
     rbx, rby = rotate(b["cs"][0], b["cs"][1], p["local_b"][0], p["local_b"][1])
     dx = b["delta_position"][0] - a["delta_position"][0] + rbx - rax
@@ -256,7 +258,7 @@ def hold_sag(c, recovery: float) -> float:
 
 
 @njit(inline="always")  # compiled into solve_soft itself, as the iterative sweep's visits
-def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
+def solve_soft_contact(c, pair, inv_h: float, use_bias: bool, push) -> None:
     """One contact: the normal impulses (soft, or rigid without bias in the relax pass), then
     friction within the cone of the current normal impulse (Box2D v3's order). ``push`` =
     (max_push_speed (m/s), deep (m), recovery): a point that began the step more than ``deep``
@@ -264,19 +266,20 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
     the position stage takes it out at a bounded speed (``settings.robust_positions``), where
     the pushes of many overlapping neighbours would add up to tens of m/s here. ``recovery``
     (h / sag_recovery_time, 0: off): how much of its overlap each biased pass adds to the
-    contact's held sag (:func:`hold_sag`)."""
+    contact's held sag (:func:`hold_sag`). ``pair``: the BODY records of the contact's bodies
+    a and b (records, not the array: inlined, an array is reference-counted at every contact)."""
     max_push, deep, recovery = push
     nx, ny = c["normal"][0], c["normal"][1]
     mass = masses(c)
     recover = use_bias and recovery > 0.0  # sag recovery off: held_sag stays 0, as prepared
     held = hold_sag(c, recovery) if recover else 0.0  # from the separations the pass reads
-    va, vb = velocity_of(bodies, c["a"]), velocity_of(bodies, c["b"])
+    va, vb = velocity(pair[0]), velocity(pair[1])
     for j in range(c["count"]):
         p = c["points"][j]
         if use_bias:  # the bodies have not moved since the last pass measured s
             s = p["separation"]
         else:  # the relax pass comes right after the move: measure s again
-            s = separation_now(c, p, bodies)
+            s = separation_now(c, p, pair)
             p["separation"] = s
         bias, mass_scale, impulse_scale = 0.0, 1.0, 0.0
         if s > 0.0:
@@ -302,8 +305,8 @@ def solve_soft_contact(c, bodies, inv_h: float, use_bias: bool, push) -> None:
         new = min(max(old - p["tangent_mass"] * vt, -limit), limit)
         p["tangent_impulse"] = new
         va, vb = apply_tangent(va, vb, mass, p, nx, ny, new - old)
-    set_velocity(bodies, c["a"], va)
-    set_velocity(bodies, c["b"], vb)
+    put_velocity(pair[0], va)
+    put_velocity(pair[1], vb)
 
 
 @njit
@@ -344,7 +347,9 @@ def solve_soft(contacts, order, bodies, context, use_bias: bool) -> None:
     push = (ctx["max_push_speed"], ctx["deep_overlap"], recovery)
     if use_bias:  # the visit compiled for each pass, its flag a constant (the hot loop)
         for q in range(order.shape[0]):
-            solve_soft_contact(contacts[order[q]], bodies, inv_h, True, push)
+            c = contacts[order[q]]
+            solve_soft_contact(c, (bodies[c["a"]], bodies[c["b"]]), inv_h, True, push)
     else:
         for q in range(order.shape[0]):
-            solve_soft_contact(contacts[order[q]], bodies, inv_h, False, push)
+            c = contacts[order[q]]
+            solve_soft_contact(c, (bodies[c["a"]], bodies[c["b"]]), inv_h, False, push)
