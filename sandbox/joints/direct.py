@@ -96,7 +96,8 @@ def gather_rows(joints, bodies, soft, use_bias: bool, rows) -> None:
     for i in range(joints.shape[0]):
         j = joints[i]
         if j["kind"] == PIVOT:
-            ra, rb, ex, ey = pivot_point_error(j, bodies, soft, use_bias)
+            pair = bodies[j["a"]], bodies[j["b"]]
+            ra, rb, ex, ey = pivot_point_error(j, pair, soft, use_bias)
             set_row(rows[m], i, j, bodies, (ra, rb), (1.0, 0.0), ex, j["impulse"][0])
             set_row(rows[m + 1], i, j, bodies, (ra, rb), (0.0, 1.0), ey, j["impulse"][1])
             m += 2

@@ -36,7 +36,7 @@ from sandbox.joints.base import (
     inverse_masses,
     move_joint_bodies,
 )
-from sandbox.math2d import inverse_or_zero, set_velocity, velocity_of
+from sandbox.math2d import inverse_or_zero, set_velocity, velocity, velocity_of
 from sandbox.records import PIVOT
 
 
@@ -271,12 +271,15 @@ def solve_pivot_axial_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> Non
 
 
 @njit
-def pivot_point_error(j, bodies, soft, use_bias: bool):
+def pivot_point_error(j, pair, soft, use_bias: bool):
     """The point rows' arms and what the impulse must cancel, Cdot + bias (m/s): the anchors'
     relative velocity, aimed at the arc's end, plus the soft bias on C = (dc_b - dc_a) +
-    (r_b - r_a) + (c_b - c_a at the start) = pb - pa (none in the relax pass)."""
-    va, vb = velocity_of(bodies, j["a"]), velocity_of(bodies, j["b"])
-    ra, rb = arms_now(j, bodies)
+    (r_b - r_a) + (c_b - c_a at the start) = pb - pa (none in the relax pass). ``pair``: the
+    BODY records of the joint's bodies a and b (records, not the bodies' array: called once a
+    joint and a pass, the array was reference-counted at every call)."""
+    a, b = pair
+    va, vb = velocity(a), velocity(b)
+    ra, rb = arm(a, j["local_a"]), arm(b, j["local_b"])
     cx, cy = anchor_velocity(va, ra, vb, rb)
     # arc correction: the anchors move on arcs R(w h) r, not along the tangents the velocity
     # rows assume; aim at where they really go by the end of the substep
@@ -284,7 +287,6 @@ def pivot_point_error(j, bodies, soft, use_bias: bool):
     ea, eb = arc_error(ra[0], ra[1], va[2] * h), arc_error(rb[0], rb[1], vb[2] * h)
     cx, cy = cx - (ea[0] - eb[0]) / h, cy - (ea[1] - eb[1]) / h
     if use_bias:
-        a, b = bodies[j["a"]], bodies[j["b"]]
         sx = b["delta_position"][0] - a["delta_position"][0] + rb[0] - ra[0] + j["delta_center"][0]
         sy = b["delta_position"][1] - a["delta_position"][1] + rb[1] - ra[1] + j["delta_center"][1]
         cx, cy = cx + soft[0] * sx, cy + soft[0] * sy
@@ -296,7 +298,8 @@ def solve_pivot_soft(j, bodies, soft, use_bias: bool, inv_h: float) -> None:
     """Motor, limits and point as soft constraints (Box2D v3's revolute joint): the point
     impulse P = -mass_scale K^-1 (Cdot + bias) - impulse_scale P_total."""
     solve_pivot_axial_soft(j, bodies, soft, use_bias, inv_h)
-    ra, rb, ex, ey = pivot_point_error(j, bodies, soft, use_bias)
+    pair = bodies[j["a"]], bodies[j["b"]]
+    ra, rb, ex, ey = pivot_point_error(j, pair, soft, use_bias)
     mass_scale, impulse_scale = (soft[1], soft[2]) if use_bias else (1.0, 0.0)
     mass = inverse_masses(j, bodies)
     ux, uy = solve2(point_matrix(mass, ra, rb), ex, ey)
