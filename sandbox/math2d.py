@@ -109,14 +109,14 @@ def push_along(
     return va, vb
 
 
-@njit
+@njit(inline="always")  # a record: nothing to count references to
 def velocity(body) -> tuple[float, float, float]:
     """A BODY record's (vx, vy, w)."""
     v = body["vel"]
     return v[0], v[1], body["omega"]
 
 
-@njit
+@njit(inline="always")
 def put_velocity(body, v: tuple) -> None:
     """Write (vx, vy, w) into a BODY record."""
     vel = body["vel"]
