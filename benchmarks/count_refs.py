@@ -22,11 +22,12 @@ The caller is the compiled function the call is written in: a function numba inl
 its caller. ``--scene``: any scene of ``ab.py``.
 
 Found with it (numba 0.68): the pyramid of base 40 counted 9,532 references a step, the
-narrowphase's two for each of its 2,380 pairs of boxes, and the soft pyramid of 20 4,768 more in
-its passes over the contacts; the rain of 100, 455 of its 770 in the hand-off of velocities
-between lanes (a tuple of arrays picked by a number at every group). Each is gone; left: the
-narrowphase's placed vertices, counted at each pair with a polygon (the polygon functions take
-that array), and the counts once a call of each stage.
+narrowphase's two arrays at each of its 2,380 pairs of boxes; the soft pyramid of 20 4,768
+more in its passes over the contacts; the rain of 100, 455 of its 770 in the hand-off of
+velocities between lanes (a tuple of arrays picked by a number at every group). Each is gone:
+records instead of the arrays, one array instead of the tuple, and for the polygons' placed
+vertices, which the polygon functions need whole, a view numba does not count
+(``sandbox/borrowed.py``). Left: the counts once a call of each stage.
 """
 
 from __future__ import annotations

@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from sandbox.borrowed import borrowed
 from sandbox.jit import njit
 from sandbox.manifolds import Manifolds
 from sandbox.math2d import rotate
@@ -165,6 +166,17 @@ def collide_into(pairs, npairs, shapes, vertices, bodies, joints, reach, contact
     rain's 2,783 circle pairs (160 against 107 us, measured; the difference is in the machine
     code numba makes of the two shapes of loop)."""
     wp = place_polygons(shapes, vertices, bodies)
+    return collide_placed(pairs, npairs, shapes, wp, bodies, joints, reach, contacts)
+
+
+@njit
+def collide_placed(pairs, npairs, shapes, wp, bodies, joints, reach, contacts) -> int:
+    """:func:`collide_into`'s loop over the pairs, the polygons placed (``wp``, from
+    :func:`place_polygons`). The polygon functions get ``wp`` at every pair, inlined: as a
+    view numba counts no references to (:func:`sandbox.borrowed.borrowed`), 4,760 atomic adds a
+    step fewer on the pyramid of base 40 (the narrowphase 227 -> 174 us). ``wp`` is this
+    function's argument, so the caller keeps it alive while the view is used."""
+    wp = borrowed(wp)
     base, ahead = reach
     k = 0
     for q in range(npairs):  # contacts[k] exists: k <= q < npairs <= len(contacts)
