@@ -342,9 +342,8 @@ class World(Building, Measures):
         fast = self._fast and self.timer is None
         model = (self.state, self.rot, g.table, g.vertices, self.joint_table, self.generator_table)
         kernel = step_kernel(len(g), len(self.joint_table), s.solver)
-        if (
-            fast and kernel == "free_step"
-        ):  # the arrays the forces need, if any depends on the state
+        if fast and kernel == "free_step":
+            # the arrays the forces need, only if one depends on the state (free_step)
             fields = None if self._work is None else (*model[2:], self._work)
             self._run = bound(free_step, self.state, self.rot, self.context, fields)
         elif fast:
