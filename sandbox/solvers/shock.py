@@ -72,22 +72,26 @@ def contact_layers(contacts, k: int, bodies, gap: float = np.inf):
     gap does not hold anything up)."""
     n = bodies.shape[0]
     contacts_at = where(contacts) if JIT_ENABLED else (0, 0)
+    # the touching contacts' two bodies, read from the records once: a second pass over the
+    # records (two of their ten lines each) took 70 of 300 us on the rain of 5,000
+    ends = np.empty((k, 2), dtype=np.int64)
+    m = 0
     degree = np.zeros(n + 1, dtype=np.int64)
     for i in range(k):
         fetch_layer_fields(contacts_at, i, k)
         if touching(contacts[i], gap):
-            degree[contacts[i]["a"] + 1] += 1
-            degree[contacts[i]["b"] + 1] += 1
+            a, b = contacts[i]["a"], contacts[i]["b"]
+            ends[m, 0], ends[m, 1] = a, b
+            m += 1
+            degree[a + 1] += 1
+            degree[b + 1] += 1
     start = degree  # summed in place (np.cumsum compiled 0.3 s more from an empty cache):
     for u in range(n):  # the neighbours of body u are neighbour[start[u]:start[u + 1]]
         start[u + 1] += start[u]
     fill = start[:-1].copy()
     neighbour = np.empty(start[n], dtype=np.int64)
-    for i in range(k):
-        fetch_layer_fields(contacts_at, i, k)
-        if not touching(contacts[i], gap):
-            continue
-        a, b = contacts[i]["a"], contacts[i]["b"]
+    for i in range(m):
+        a, b = ends[i, 0], ends[i, 1]
         neighbour[fill[a]] = b
         fill[a] += 1
         neighbour[fill[b]] = a
