@@ -5,32 +5,49 @@ as the clock saw them. Compiling itself is not run here (a minute from an empty 
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import compile_profile  # noqa: E402
 
 
-def test_clock_charges_each_stage_its_own_time():
+class FakeTime:
+    """A clock that moves only when told (``pass_time``): the times are exact."""
+
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def perf_counter(self) -> float:
+        return self.now
+
+    def pass_time(self, seconds: float) -> None:
+        self.now += seconds
+
+
+def test_clock_charges_each_stage_its_own_time(monkeypatch):
+    clock_time = FakeTime()
+    monkeypatch.setattr(compile_profile, "time", clock_time)
+
     class Library:
-        """Stands in for a numba code library: ``outer`` sleeps around ``inner``."""
+        """Stands in for a numba code library: ``outer`` spends 0.5 s around ``inner``."""
 
         def outer(self, inner_seconds: float) -> str:
-            time.sleep(0.05)
+            clock_time.pass_time(0.25)
             self.inner(inner_seconds)
+            clock_time.pass_time(0.25)
             return "done"
 
         def inner(self, seconds: float) -> None:
-            time.sleep(seconds)
+            clock_time.pass_time(seconds)
 
     clock = compile_profile.Clock()
     clock.wrap(Library, "outer", "outer stage")
     clock.wrap(Library, "inner", "inner stage")
-    assert Library().outer(0.2) == "done"
-    assert clock.calls == {"outer stage": 1, "inner stage": 1}
-    assert 0.2 <= clock.seconds["inner stage"] < 0.3
-    assert 0.05 <= clock.seconds["outer stage"] < 0.15  # not 0.25: the inner stage is its own
+    assert Library().outer(2.0) == "done"
+    assert Library().outer(1.0) == "done"
+    assert clock.calls == {"outer stage": 2, "inner stage": 2}
+    assert clock.seconds["inner stage"] == 3.0
+    assert clock.seconds["outer stage"] == 1.0  # not 4.0: the inner stage is its own
     assert clock.inner == []
 
 
