@@ -17,8 +17,8 @@ with the IR of every function it calls linked in, optimized again as one module.
 calls ten functions re-optimizes and compiles all ten once more, and the one-call step all of
 its stages. The table of functions lists the costliest libraries with the functions their
 final module holds (its own and those linked in) and the libraries linked. The line "each
-function compiled" says how many times, on the average, a function's code went through LLVM's
-module passes and machine code.
+function through LLVM's module passes and machine code N times" says how often, on the
+average, a function's code went through them.
 
 Found with it (numba 0.68, the project's 2-core machine, an empty cache): the iterative
 solver's family compiles 248 libraries in 48 to 68 s, as the hour goes. LLVM takes about half
