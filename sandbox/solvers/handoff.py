@@ -137,12 +137,16 @@ def hand_in(lanes, sources, layout: tuple, first: int, end: int) -> None:
     base, size, at, column = layout
     for b in range(first, end):
         start = np.uint64(base) + np.uint64(b) * np.uint64(size) + at
-        for lane in range(LANES):
-            q, i = column + b * LANES + lane, start + np.uint64(lane)
-            for side in range(2):
-                to, src = i + np.uint64(side) * OTHER_BODY, np.uint64(sources[side, q])
-                vx, vy, w = lanes[src], lanes[src + NEXT_FIELD], lanes[src + 2 * NEXT_FIELD]
-                lanes[to], lanes[to + NEXT_FIELD], lanes[to + 2 * NEXT_FIELD] = vx, vy, w
+        q = column + b * LANES  # the block's first lane in sources
+        for side in range(2):  # field by field, the block's lanes in a row: each field's
+            # eight numbers written side by side (lane by lane, the three fields of a lane:
+            # 490 against 390 us for ten sweeps' hand-ins on the rain of 5,000)
+            to = start + np.uint64(side) * OTHER_BODY
+            for field in range(3):
+                at_field = np.uint64(field) * NEXT_FIELD
+                for lane in range(LANES):
+                    src = np.uint64(sources[side, q + lane]) + at_field
+                    lanes[to + at_field + np.uint64(lane)] = lanes[src]
 
 
 @njit
