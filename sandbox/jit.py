@@ -44,6 +44,16 @@ if JIT_ENABLED:
     import numba
     import numba.core.cpu
     import numba.core.event
+    from llvmlite import binding as llvm
+
+    from sandbox.vector_width import target_features
+
+    try:  # before anything compiles: the vectors' width (sandbox.vector_width)
+        _features = target_features(llvm.get_host_cpu_features().flatten(), os.environ)
+    except RuntimeError:  # LLVM cannot tell this processor's features: numba's default
+        _features = None
+    if _features is not None:
+        numba.config.CPU_FEATURES = _features
 
     from sandbox.heap import keep_heap
 
