@@ -44,12 +44,14 @@ COMPILER_SETTINGS = ("jit.py", "vector_width.py")
 
 
 def kernel_sources_hash() -> str:
-    """A short hash of the source of every module of the package that compiles kernels, and of
-    those that set how they compile (:data:`COMPILER_SETTINGS`)."""
+    """A short hash of the source of every module of the package that compiles kernels or
+    instructions compiled into them (numba's ``@intrinsic``), and of those that set how they
+    compile (:data:`COMPILER_SETTINGS`)."""
     digest = hashlib.sha256()
     for path in sorted(_PACKAGE.rglob("*.py")):
         text = path.read_bytes()
-        if b"@njit" in text or path.relative_to(_PACKAGE).as_posix() in COMPILER_SETTINGS:
+        compiled = b"@njit" in text or b"@intrinsic" in text
+        if compiled or path.relative_to(_PACKAGE).as_posix() in COMPILER_SETTINGS:
             digest.update(path.relative_to(_PACKAGE).as_posix().encode())
             digest.update(text)
     return digest.hexdigest()[:16]

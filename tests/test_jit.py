@@ -18,6 +18,20 @@ def test_cache_key_changes_when_any_kernel_module_changes(tmp_path, monkeypatch)
     assert jit.kernel_sources_hash() != before  # a kernel in another module changed
 
 
+def test_cache_key_covers_intrinsics_and_the_compiler_settings(tmp_path, monkeypatch):
+    (tmp_path / "bits.py").write_text("@intrinsic\ndef f(typingctx, x):\n    pass\n")
+    (tmp_path / "vector_width.py").write_text("WIDE = '-prefer-256-bit'\n")
+    (tmp_path / "plain.py").write_text("def h():\n    return 1\n")
+    monkeypatch.setattr(jit, "_PACKAGE", tmp_path)
+    before = jit.kernel_sources_hash()
+    (tmp_path / "bits.py").write_text("@intrinsic\ndef f(typingctx, y):\n    pass\n")
+    after_intrinsic = jit.kernel_sources_hash()
+    assert after_intrinsic != before  # compiled into the kernels that call it
+    (tmp_path / "vector_width.py").write_text("WIDE = ''\n")
+    assert jit.kernel_sources_hash() != after_intrinsic  # how every kernel compiles
+    assert "vector_width.py" in jit.COMPILER_SETTINGS and "jit.py" in jit.COMPILER_SETTINGS
+
+
 def test_numba_cache_lives_in_the_keyed_folder():
     if not compiled.JIT_ENABLED:
         return

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from sandbox.bits import lowest_bit
 from sandbox.jit import literally, njit
 from sandbox.math2d import push_along, speed_along
 from sandbox.prefetch import AHEAD, prefetch_record, span, where
@@ -106,9 +107,7 @@ def colour(
         chosen = COLOURS
         if taken != ALL_COLOURS:
             free = ~taken & (taken + 1)  # the lowest bit not taken
-            chosen = 0
-            while (free >> chosen) != 1:
-                chosen += 1
+            chosen = lowest_bit(free)
             if move_a:
                 used[a] |= free
             if move_b:
