@@ -23,7 +23,7 @@ import sys
 from dataclasses import dataclass
 
 import run  # benchmarks/run.py, beside this file
-from engines import BOX2D_MISSING, ENGINES
+from engines import BOX2D_MISSING
 
 MINE = "iterative"  # the column the bounds are about: this engine's default solver
 
@@ -56,8 +56,7 @@ def measure(scene: str, clock: str) -> dict[str, float]:
     """One run of ``scene`` as ``run.py`` times it: seconds per step of every engine on
     ``clock`` (``cpu`` or ``wall``)."""
     case = next(c for c in run.CASES if c.name == scene)
-    engines = [e for e in ENGINES if case.contacts or not e.contacts_only]
-    timings = run.time_steps(case.build(), case.steps, engines)
+    timings = run.time_steps(case.build(), case.steps, run.case_engines(case))
     return {name: getattr(t, clock) for name, t in timings.items()}
 
 

@@ -194,10 +194,15 @@ def time_steps(spec: dict, steps: int, engines: list[Engine]) -> dict[str, Timin
     }
 
 
+def case_engines(case: Case) -> list[Engine]:
+    """The engines a case steps: all, but those for contact scenes only where nothing touches."""
+    return [e for e in ENGINES if case.contacts or not e.contacts_only]
+
+
 def bench_case(case: Case, quick: bool, clock: str) -> dict:
     spec = case.build()
     steps = case.quick_steps if quick else case.steps
-    engines = [e for e in ENGINES if case.contacts or not e.contacts_only]
+    engines = case_engines(case)
     base = {"bodies": scenes.body_count(spec), "steps": steps, "clock": clock}
     try:
         timings = time_steps(spec, steps, engines)
