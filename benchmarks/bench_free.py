@@ -10,8 +10,8 @@ median over its blocks. Time is the process's CPU time (``time.process_time``), 
 programs sharing the machine's cores do not count; on a quiet machine it is the wall time.
 
 ``--stages``: where the time of a 1,000-body step goes, per stage and integrator
-(``sandbox.step.StageTimer``: the staged path, each stage called from Python, so each stage
-also carries about a microsecond of call overhead that the one-call step does not pay).
+(``sandbox.staged_step.StageTimer``: the staged path, each stage called from Python, so each
+stage also carries about a microsecond of call overhead that the one-call step does not pay).
 """
 
 from __future__ import annotations
@@ -59,7 +59,8 @@ def measure(seconds: float) -> dict[tuple[str, int], float]:
 
 def stage_table(n: int = 1000, steps: int = 300) -> None:
     """Print the microseconds per step of every stage for ``n`` free bodies, per integrator."""
-    from sandbox.step import STAGES, StageTimer
+    from sandbox.staged_step import StageTimer
+    from sandbox.step import STAGES
 
     seconds = {}
     for name in INTEGRATORS:

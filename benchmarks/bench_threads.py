@@ -15,8 +15,8 @@ pair order, so the contact list, and every step after it, is bit-identical to th
   the wall time per step (``time.perf_counter``) and the process's CPU time per step
   (``time.process_time``: every thread, unlike ``run.py``'s thread time), and checks that the
   bodies came out bit-identical. Both worlds take the staged path (``world.timer``), which calls
-  the narrowphase from Python through ``sandbox.step.collide_into``: the script swaps that name.
-- ``--stages``: each stage's share of a one-thread step (``sandbox.step.StageTimer``).
+  the narrowphase from Python through ``sandbox.staged_step.collide_into``: the script swaps that name.
+- ``--stages``: each stage's share of a one-thread step (``sandbox.staged_step.StageTimer``).
 - ``--kernel``: the narrowphase alone on a settled scene's pairs, one against two threads.
 - ``--compile``: in a fresh process with an empty compile cache, the time to compile the engine
   and step a small pyramid once, then the extra time of the two-thread kernel's first call.
@@ -59,7 +59,7 @@ import time
 import numba
 import numpy as np
 
-import sandbox.step
+import sandbox.staged_step
 import scenes
 from sandbox.build import build_world
 from sandbox.jit import njit
@@ -73,7 +73,8 @@ from sandbox.narrowphase import (
 )
 from sandbox.scene import validate_scene
 from sandbox.speculative import closing_reach
-from sandbox.step import STAGES, StageTimer
+from sandbox.staged_step import StageTimer
+from sandbox.step import STAGES
 
 CASES = {
     "pyramid_20": lambda: scenes.pyramid(20),
@@ -149,14 +150,14 @@ def build(spec: dict):
 
 def step(world, threads: int, steps: int) -> tuple[float, float]:
     """``steps`` steps with the ``threads``-thread narrowphase: (wall s, process CPU s) per step."""
-    sandbox.step.collide_into = NARROWPHASES[threads]
+    sandbox.staged_step.collide_into = NARROWPHASES[threads]
     try:
         w0, c0 = time.perf_counter(), time.process_time()
         for _ in range(steps):
             world.step()
         c1, w1 = time.process_time(), time.perf_counter()
     finally:
-        sandbox.step.collide_into = collide_into
+        sandbox.staged_step.collide_into = collide_into
     return (w1 - w0) / steps, (c1 - c0) / steps
 
 
@@ -218,7 +219,7 @@ import scenes
 from sandbox.build import build_world
 from sandbox.scene import validate_scene
 world = build_world(validate_scene(scenes.pyramid(4)))
-world.timer = __import__("sandbox.step").step.StageTimer()
+world.timer = __import__("sandbox.staged_step").staged_step.StageTimer()
 world.step()
 t1 = time.perf_counter()
 import bench_threads

@@ -7,7 +7,7 @@ lockstep, alternating blocks of 10 steps so all see the same machine load:
 
 - this engine's world stepping normally (``World.step``: for these scenes the whole step is one
   compiled call, ``sandbox.step.fast_step``): the step's real cost;
-- a second world with a stage timer (``world.timer = sandbox.step.StageTimer()``), which makes
+- a second world with a stage timer (``world.timer = sandbox.staged_step.StageTimer()``), which makes
   it take the staged path: the very same stage functions called one by one from Python, each
   timed (``sandbox.step.STAGES``); it stays bit-identical to the first world (checked);
 - pymunk's ``Space.step`` on the same scene.
@@ -30,7 +30,8 @@ import scenes  # benchmarks/scenes.py, beside this file
 from sandbox.build import build_world
 from sandbox.pymunk_bridge import PymunkScene
 from sandbox.scene import validate_scene
-from sandbox.step import STAGES, StageTimer
+from sandbox.staged_step import StageTimer
+from sandbox.step import STAGES
 
 BLOCK = 10
 SCENES = {

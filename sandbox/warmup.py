@@ -51,7 +51,7 @@ from sandbox.compile_cache import CACHE_FOLDER, mark_warm
 from sandbox.forces import Buoyancy, ConstantForce, Drag
 from sandbox.joints import PinJoint, PivotJoint, SpringJoint
 from sandbox.shapes import Box, Circle, Polygon
-from sandbox.step import StageTimer
+from sandbox.staged_step import StageTimer
 from sandbox.world import World
 
 

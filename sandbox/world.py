@@ -31,7 +31,8 @@ from sandbox.settings import Settings
 from sandbox.shape_records import Geometry, build_geometry
 from sandbox.sleep import wake_island
 from sandbox.sleeping_contacts import keep_sleeping_contacts
-from sandbox.step import fast_step, free_step, soft_step, staged_step
+from sandbox.staged_step import staged_step
+from sandbox.step import fast_step, free_step, soft_step
 from sandbox.world_building import Building
 from sandbox.world_measures import Measures
 
@@ -84,7 +85,7 @@ class World(Building, Measures):
         self.bodies: list[Body] = []
         self.joints: list = []
         self.forces: list = []
-        self._timer = None  # a sandbox.step.StageTimer: time every stage (the staged path)
+        self._timer = None  # a sandbox.staged_step.StageTimer: time every stage (the staged path)
         self._by_name: dict[str, Body] = {}
         self._python_forces: list = []  # force objects without a record: evaluated per step
         self._controlled: list[Body] = []
@@ -282,7 +283,7 @@ class World(Building, Measures):
 
     @property
     def timer(self):
-        """A :class:`sandbox.step.StageTimer` that times every stage of each step (the world
+        """A :class:`sandbox.staged_step.StageTimer` that times every stage of each step (the world
         then takes the staged path), or None (the default: the fastest path)."""
         return self._timer
 

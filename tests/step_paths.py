@@ -1,6 +1,6 @@
 """The two ways a world steps, side by side: one compiled call (``sandbox.step.fast_step``,
 ``free_step``, ``soft_step``) and the same stages called one by one from Python
-(``sandbox.step.staged_step``, which a stage timer selects). Both run the same functions in the
+(``sandbox.staged_step.staged_step``, which a stage timer selects). Both run the same functions in the
 same order, so the tests compare them with exact equality."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from collections.abc import Callable
 import numpy as np
 
 from sandbox import World
-from sandbox.step import StageTimer
+from sandbox.staged_step import StageTimer
 
 
 def fast_and_staged(make: Callable[[], World], steps: int) -> tuple[World, World]:

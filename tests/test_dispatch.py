@@ -18,7 +18,7 @@ from __future__ import annotations
 import pytest
 
 from sandbox import jit, warmup
-from sandbox.step import StageTimer
+from sandbox.staged_step import StageTimer
 
 pytestmark = pytest.mark.skipif(not jit.JIT_ENABLED, reason="dispatch only exists compiled")
 
@@ -67,7 +67,7 @@ def test_later_steps_never_take_the_slow_dispatch(label, slow_dispatches):
 def test_the_counter_sees_the_slow_dispatch_this_test_was_written_for(slow_dispatches):
     # the measure itself, on a call that takes the slow path: a compiled function with its
     # last arguments (defaults) left out, every time (the position stage's call did this,
-    # before its flag moved into the step's context: sandbox.step.position_stage)
+    # before its flag moved into the step's context: sandbox.staged_step.position_stage)
     import numpy as np
 
     from sandbox.toi import time_of_impact
@@ -92,7 +92,7 @@ import sys
 from numba import njit
 from numba.core.dispatcher import Dispatcher
 from sandbox import warmup
-from sandbox.step import StageTimer
+from sandbox.staged_step import StageTimer
 
 @njit
 def flag(value={value}):

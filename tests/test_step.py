@@ -99,7 +99,7 @@ def test_switches_take_the_compiled_step_too(switches):
 def test_a_timer_set_after_the_first_step_times_the_next_ones():
     # the world takes the staged path as soon as a timer is set, prepared or not
     from sandbox import Body, Circle, World
-    from sandbox.step import StageTimer
+    from sandbox.staged_step import StageTimer
 
     w = World()
     w.add_body(Body("b")).add_shape(Circle(0.5))
