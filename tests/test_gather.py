@@ -71,15 +71,17 @@ def test_one_gather_instruction_where_the_processor_has_avx512():
 
 @pytest.mark.skipif(not JIT_ENABLED, reason="compiled kernels only")
 @pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64"), reason="an x86 target")
-def test_a_processor_without_a_gather_instruction_gets_the_same_numbers(tmp_path):
-    # numba's target set to plain x86-64 (SSE2, no gather): LLVM loads the numbers one by one
+@pytest.mark.parametrize("cpu", ["x86-64", "haswell"])
+def test_a_processor_without_avx512_gets_the_same_numbers(tmp_path, cpu):
+    # numba's target set to plain x86-64 (SSE2, no gather instruction: LLVM loads the numbers
+    # one by one) or to AVX2 (four-wide gathers, two for eight)
     code = (
         "import numpy as np; from tests.test_gather import case, gather_blocks\n"
         "numbers, indices, to, expected = case(5)\n"
         "gather_blocks(numbers, indices, to)\n"
         "assert np.array_equal(numbers, expected)\n"
     )
-    env = dict(os.environ, NUMBA_CPU_NAME="x86-64", NUMBA_CACHE_DIR=str(tmp_path))
+    env = dict(os.environ, NUMBA_CPU_NAME=cpu, NUMBA_CACHE_DIR=str(tmp_path))
     env.pop("NUMBA_CPU_FEATURES", None)
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     done = subprocess.run(
