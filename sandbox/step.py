@@ -426,3 +426,13 @@ def free_step(bodies, rot, context, fields) -> int:
     context[0]["contact_points"] = 0
     clear_forces(bodies)
     return store_impulses(np.int64(0), bodies, context)  # no contacts (np.int64: see jit.ON)
+
+
+def __getattr__(name: str):
+    """``sandbox.step.StageTimer`` and ``staged_step``, where they were before they moved to
+    :mod:`sandbox.staged_step` (imported on first use: that module imports this one)."""
+    if name in ("StageTimer", "staged_step"):
+        from sandbox import staged_step
+
+        return getattr(staged_step, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -108,3 +108,14 @@ def test_a_timer_set_after_the_first_step_times_the_next_ones():
     w.step()
     w.step()
     assert w.timer.steps == 2
+
+
+def test_the_stage_timer_is_still_found_where_it_was():
+    from sandbox import staged_step
+    from sandbox.step import StageTimer
+    from sandbox.step import staged_step as moved
+
+    assert StageTimer is staged_step.StageTimer
+    assert moved is staged_step.staged_step
+    with pytest.raises(ImportError):
+        from sandbox.step import no_such_stage  # noqa: F401
