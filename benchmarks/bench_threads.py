@@ -15,7 +15,8 @@ pair order, so the contact list, and every step after it, is bit-identical to th
   the wall time per step (``time.perf_counter``) and the process's CPU time per step
   (``time.process_time``: every thread, unlike ``run.py``'s thread time), and checks that the
   bodies came out bit-identical. Both worlds take the staged path (``world.timer``), which calls
-  the narrowphase from Python through ``sandbox.staged_step.collide_into``: the script swaps that name.
+  the narrowphase from Python through ``sandbox.staged_step.collide_into``: the script swaps
+  that name.
 - ``--stages``: each stage's share of a one-thread step (``sandbox.staged_step.StageTimer``).
 - ``--kernel``: the narrowphase alone on a settled scene's pairs, one against two threads.
 - ``--compile``: in a fresh process with an empty compile cache, the time to compile the engine

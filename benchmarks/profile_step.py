@@ -7,9 +7,9 @@ lockstep, alternating blocks of 10 steps so all see the same machine load:
 
 - this engine's world stepping normally (``World.step``: for these scenes the whole step is one
   compiled call, ``sandbox.step.fast_step``): the step's real cost;
-- a second world with a stage timer (``world.timer = sandbox.staged_step.StageTimer()``), which makes
-  it take the staged path: the very same stage functions called one by one from Python, each
-  timed (``sandbox.step.STAGES``); it stays bit-identical to the first world (checked);
+- a second world with a stage timer (``world.timer = sandbox.staged_step.StageTimer()``), which
+  makes it take the staged path: the very same stage functions called one by one from Python,
+  each timed (``sandbox.step.STAGES``); it stays bit-identical to the first world (checked);
 - pymunk's ``Space.step`` on the same scene.
 
 A staged stage's time includes the cost of its own compiled call from Python (about a

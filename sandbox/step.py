@@ -24,15 +24,16 @@ The stages, in order, each a function named after what it does:
 11. ``store_impulses``       this step's contacts become the next step's warm-start source; a
                              body whose state stopped being finite is reported
 
-:func:`sandbox.staged_step.staged_step` calls the stages one by one from Python, whatever the settings, and can time
-each (``timer``). :func:`fast_step` is the same sequence in one compiled call, for the usual
-world (sweep and prune, the iterative or soft solver, no continuous collision; any integrator
-and force generator); each compiled call from Python costs about a microsecond, as much as a
-small world's whole step. Both run the very same stage functions in the same order, so they
-give bit-identical results (``tests/test_step.py``, ``tests/test_step_integrators.py``). The
-look-ahead integrators write into work arrays the world keeps (``work``) where a force depends
-on the state; without such forces every integrator is worked out body by body, the world passes
-``work=None``, and its compiled step leaves the passes over them out.
+:func:`sandbox.staged_step.staged_step` calls the stages one by one from Python, whatever the
+settings, and can time each (``timer``). :func:`fast_step` is the same sequence in one compiled
+call, for the usual world (sweep and prune, the iterative or soft solver, no continuous
+collision; any integrator and force generator); each compiled call from Python costs about a
+microsecond, as much as a small world's whole step. Both run the very same stage functions in
+the same order, so they give bit-identical results (``tests/test_step.py``,
+``tests/test_step_integrators.py``). The look-ahead integrators write into work arrays the world
+keeps (``work``) where a force depends on the state; without such forces every integrator is
+worked out body by body, the world passes ``work=None``, and its compiled step leaves the passes
+over them out.
 """
 
 from __future__ import annotations
@@ -298,9 +299,9 @@ def finish_step(contacts, k: int, joints, bodies, context) -> int:
 def fast_step(
     bodies, rot, shapes, vertices, joints, generators, sets, proxies, pairs, context, work
 ) -> int:
-    """The stages of :func:`~sandbox.staged_step.staged_step` in one compiled call (sweep and prune, the iterative
-    solver, no continuous collision; any integrator and forces, with ``work`` the integrator's
-    work arrays, or None without state-dependent forces: see
+    """The stages of :func:`~sandbox.staged_step.staged_step` in one compiled call (sweep and
+    prune, the iterative solver, no continuous collision; any integrator and forces, with
+    ``work`` the integrator's work arrays, or None without state-dependent forces: see
     :func:`sandbox.integrators.integrate_velocities`). Returns 0, minus the pair rows
     needed when ``pairs`` is too small (nothing changed: grow the buffers and call again), or 1
     plus the index of a body whose state stopped being finite."""

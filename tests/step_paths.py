@@ -1,7 +1,7 @@
 """The two ways a world steps, side by side: one compiled call (``sandbox.step.fast_step``,
 ``free_step``, ``soft_step``) and the same stages called one by one from Python
-(``sandbox.staged_step.staged_step``, which a stage timer selects). Both run the same functions in the
-same order, so the tests compare them with exact equality."""
+(``sandbox.staged_step.staged_step``, which a stage timer selects). Both run the same functions
+in the same order, so the tests compare them with exact equality."""
 
 from __future__ import annotations
 
