@@ -405,3 +405,46 @@ def test_an_error_a_swallowed_interrupt_caused_exits_as_the_interrupt(capsys):
 
     assert run_command(command) == 130
     assert capsys.readouterr().err == ""
+
+
+def test_a_stop_signal_that_lands_in_a_finaliser_still_stops_the_command(capsys):
+    # a signal handled while an object's __del__ runs raises inside it, and Python drops what a
+    # finaliser raises (llvmlite frees LLVM's objects so, thousands of times while numba
+    # compiles): a stopped warmup compiled on and exited 0. The signal comes again and stops
+    # the command where the finaliser interrupted it, quietly
+    from sandbox.cli.exits import run_command
+
+    class Freed:
+        def __del__(self) -> None:
+            os.kill(os.getpid(), signal.SIGTERM)
+            sum(range(100))  # the handler runs here, inside the finaliser
+
+    went_on = []
+
+    def command() -> int:
+        Freed()  # freed at once
+        time.sleep(1.0)
+        went_on.append("finished")
+        return 0
+
+    hook = sys.unraisablehook
+    assert run_command(command) == 143
+    assert went_on == []
+    assert sys.unraisablehook is hook
+    assert capsys.readouterr().err == ""
+
+
+def test_a_stop_signal_a_library_swallowed_still_sets_the_exit_status(capsys):
+    # a library that catches everything lets the command finish: it still exits as stopped
+    from sandbox.cli.exits import run_command
+
+    def command() -> int:
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(1.0)  # the handler runs here
+        except BaseException:
+            pass
+        return 0
+
+    assert run_command(command) == 143
+    assert capsys.readouterr().err == ""

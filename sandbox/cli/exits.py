@@ -21,6 +21,7 @@ summarised in one ``warning:`` line after a run that succeeded, instead of one l
 
 from __future__ import annotations
 
+import _thread
 import contextlib
 import os
 import signal
@@ -86,6 +87,30 @@ def describe(err: BaseException) -> tuple[int, str]:
     return EXIT_FAILED, f"error: {one_line(f'{kind}: {message}')}{hint}"
 
 
+class Again:
+    """A signal sent to the main thread again a moment from now: the signal whose exception a
+    finaliser dropped (:func:`signals_as_exceptions`). ``dropped``: the next delivery raises
+    again (a second signal is otherwise ignored); ``hooked``: the unraisable hook is running."""
+
+    DELAY = 0.01  # s: long after the finaliser and the hook have returned
+
+    def __init__(self) -> None:
+        self.dropped = self.hooked = False
+        self.timers: list[threading.Timer] = []
+
+    def later(self, signum: int) -> None:
+        """Deliver ``signum`` to the main thread's handler after :data:`DELAY`."""
+        timer = threading.Timer(self.DELAY, _thread.interrupt_main, args=(signum,))
+        timer.daemon = True
+        self.timers.append(timer)
+        timer.start()
+
+    def cancel(self) -> None:
+        """No more deliveries (the block has ended)."""
+        for timer in self.timers:
+            timer.cancel()
+
+
 @contextlib.contextmanager
 def signals_as_exceptions() -> Iterator[list[int]]:
     """SIGTERM and SIGHUP raise :class:`Stopped` while the block runs, SIGINT
@@ -96,19 +121,45 @@ def signals_as_exceptions() -> Iterator[list[int]]:
     interrupt and fail otherwise: matplotlib once reported an invalid affine matrix) from a
     real failure. Signals the caller ignores (``nohup``, a background job) stay ignored. Only in
     the main thread (elsewhere signals cannot be handled): there the block runs unchanged.
+
+    A signal that arrives while a finaliser runs (an object's ``__del__``, a weak reference's
+    callback: llvmlite frees LLVM's objects so, thousands of times while numba compiles) raises
+    inside the finaliser, and Python drops what a finaliser raises: the command went on as if
+    nothing had come (a stopped warmup compiled on for a minute and exited 0). Python hands
+    what it dropped to ``sys.unraisablehook``; here the hook has the signal come again a moment
+    later (:class:`Again`), and the handler raises once more, in the code the finaliser
+    interrupted.
     """
     received: list[int] = []
     if threading.current_thread() is not threading.main_thread():
         yield received
         return
+    again = Again()
 
     def handler(signum, frame):
-        if received:
+        if again.hooked:  # inside the hook: what it raised here would be dropped as well
+            again.later(signum)
             return
-        received.append(128 + signum)
+        if received and not again.dropped:
+            return
+        again.dropped = False
+        if not received:
+            received.append(128 + signum)
         if signum == signal.SIGINT:
             raise KeyboardInterrupt
         raise Stopped(signum, 128 + signum)
+
+    previous_hook = sys.unraisablehook
+
+    def unraisable(info) -> None:
+        if not (received and isinstance(info.exc_value, (Stopped, KeyboardInterrupt))):
+            previous_hook(info)
+            return
+        again.hooked, again.dropped = True, True
+        try:
+            again.later(received[0] - 128)
+        finally:
+            again.hooked = False
 
     saved = {}
     names = list(_HANDLED)
@@ -119,9 +170,12 @@ def signals_as_exceptions() -> Iterator[list[int]]:
         if signum is None or signal.getsignal(signum) is signal.SIG_IGN:
             continue
         saved[signum] = signal.signal(signum, handler)
+    sys.unraisablehook = unraisable
     try:
         yield received
     finally:
+        again.cancel()
+        sys.unraisablehook = previous_hook
         for signum, old in saved.items():
             signal.signal(signum, old)
 
@@ -175,6 +229,8 @@ def run_command(command: Callable[[], int]) -> int:
         status, line = describe(err)
         print(line, file=sys.stderr)
         return status
+    if received:  # an interrupt a library swallowed, and the command finished all the same
+        return received[0]
     for line in summary:
         print(line, file=sys.stderr)
     return status
