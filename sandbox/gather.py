@@ -13,8 +13,8 @@ time, 292 to 297 us gathered.
 
 A processor without a gather instruction (AVX2 has four-wide ones, ARM's NEON none) gets
 LLVM's own sequence of loads for it, the same numbers. With numba's bounds checks on
-(``NUMBA_BOUNDSCHECK=1``) it is numba's indexing, each index checked; uncompiled
-(``SANDBOX_JIT=0``) a Python loop.
+(``NUMBA_BOUNDSCHECK=1``) it is :func:`gather_plain`, compiled with each index checked;
+uncompiled (``SANDBOX_JIT=0``) the same function in Python.
 """
 
 from __future__ import annotations
@@ -27,10 +27,14 @@ WIDTH = 8  # numbers gathered at once (the wide sweeps' LANES)
 
 
 def gather_plain(numbers, to: int, indices, first: int, add: int) -> None:
-    """:func:`gather_lanes` in Python (``SANDBOX_JIT=0``)."""
-    flat = indices.reshape(-1)
-    gathered = [numbers[int(flat[first + lane]) + int(add)] for lane in range(WIDTH)]
-    numbers[int(to) : int(to) + WIDTH] = gathered
+    """:func:`gather_lanes` one number at a time: in Python (``SANDBOX_JIT=0``), and compiled
+    by numba with each index checked (``NUMBA_BOUNDSCHECK=1``). Every number is read before any
+    is written."""
+    flat, shift, got = indices.reshape(-1), np.int64(add), np.empty(WIDTH)
+    for lane in range(WIDTH):
+        got[lane] = numbers[flat[first + lane] + shift]
+    for lane in range(WIDTH):
+        numbers[np.int64(to) + lane] = got[lane]
 
 
 if JIT_ENABLED:
@@ -43,14 +47,6 @@ if JIT_ENABLED:
         one = builder.insert_element(ir.Constant(kind, ir.Undefined), value, ir.IntType(32)(0))
         lanes = ir.Constant(ir.VectorType(ir.IntType(32), WIDTH), [0] * WIDTH)
         return builder.shuffle_vector(one, ir.Constant(kind, ir.Undefined), lanes)
-
-    def _checked(numbers, to, indices, first, add) -> None:
-        # gather_lanes as numba's indexing, each index checked (every one read first)
-        flat, shift, got = indices.reshape(-1), np.int64(add), np.empty(WIDTH)
-        for lane in range(WIDTH):
-            got[lane] = numbers[flat[first + lane] + shift]
-        for lane in range(WIDTH):
-            numbers[np.int64(to) + lane] = got[lane]
 
     @intrinsic
     def gather_lanes(typingctx, numbers, to, indices, first, add):
@@ -66,7 +62,7 @@ if JIT_ENABLED:
 
         def codegen(context, builder, signature, args):
             if context.enable_boundscheck:  # NUMBA_BOUNDSCHECK: numba's checked indexing
-                return context.compile_internal(builder, _checked, signature, args)
+                return context.compile_internal(builder, gather_plain, signature, args)
             kinds = signature.args
             i64, f64 = ir.IntType(64), ir.DoubleType()
             ints, doubles = ir.VectorType(i64, WIDTH), ir.VectorType(f64, WIDTH)

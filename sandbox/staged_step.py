@@ -55,12 +55,19 @@ class StageTimer:
         self.seconds[stage] += now - self._last
         self._last = now
 
+    def done(self) -> None:
+        """A step is over."""
+        self.steps += 1
+
 
 class _NoTimer:
     def start(self) -> None:
         pass
 
     def lap(self, stage: str) -> None:
+        pass
+
+    def done(self) -> None:
         pass
 
 
@@ -144,8 +151,7 @@ def staged_step(world, timer: StageTimer | None = None) -> int:
     clock.lap("fix_positions")
     status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
-    if timer is not None:
-        timer.steps += 1
+    clock.done()
     return status
 
 
@@ -165,8 +171,7 @@ def staged_soft(world, found, a, clock) -> int:
     clock.lap("restitution")
     status = finish_step(contacts, k, a.joints, a.bodies, a.context)
     clock.lap("store_impulses")
-    if isinstance(clock, StageTimer):
-        clock.steps += 1
+    clock.done()
     return status
 
 
