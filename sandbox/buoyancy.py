@@ -60,7 +60,7 @@ def clip_below(points: np.ndarray, n: int, surface_y: float, out: np.ndarray) ->
     return k
 
 
-@njit
+@njit(python=True)
 def polygon_submerged(points: np.ndarray, surface_y: float) -> tuple[float, float, float]:
     """Submerged area and its centroid of a convex polygon (world frame rows x, y)."""
     n = points.shape[0]
@@ -68,7 +68,7 @@ def polygon_submerged(points: np.ndarray, surface_y: float) -> tuple[float, floa
     return polygon_area_centroid(out, clip_below(points, n, surface_y, out))
 
 
-@njit
+@njit(python=True)
 def circle_submerged(cx: float, cy: float, radius: float, surface_y: float):
     """Area below ``surface_y`` of the circle (centre, radius) and that area's centroid.
 
@@ -103,7 +103,7 @@ def shape_submerged(shape, vertices, px: float, py: float, phi: float, surface_y
     return polygon_submerged(points, surface_y)
 
 
-@njit
+@njit(python=True)
 def submerged_by_body(bodies, shapes, vertices, state, surface_y: float, bit: np.uint64):
     """Submerged area A (n,) and its centroid c (n, 2) of every dynamic body acted on by the
     generator ``bit`` (``BODY["generators"]``), at the integrator's ``state`` (MOTION records).

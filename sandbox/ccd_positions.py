@@ -19,7 +19,7 @@ from sandbox.orientation import turn_body
 from sandbox.toi import impact_target, limit_ccd_motion
 
 
-@njit
+@njit(python=True)
 def poses(bodies) -> np.ndarray:
     """Each body's pose (x, y, angle) as (n, 3): centre of mass (m) and continuous angle (rad)."""
     out = np.empty((bodies.shape[0], 3))

@@ -85,7 +85,7 @@ def constant_force(g, bit, bodies, state, out) -> None:
             out[i]["w"] += cross(rx, ry, fx, fy)
 
 
-@njit
+@njit(python=True)
 def generator_force(generators, k: int, geometry, state, gravity, out) -> None:
     """Generator k's forces at ``state`` added into ``out`` (see :func:`accumulate_forces`);
     ``geometry`` = (bodies, shapes, vertices) records."""

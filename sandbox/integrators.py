@@ -280,7 +280,7 @@ def constant_velocity(b, gravity, dt: float, method: int) -> None:
     b["omega"], b["free_turn"] = w + dw, dphi
 
 
-@njit
+@njit(python=True)
 def gather_forces(bodies) -> None:
     """Add each body's constant force and torque to what was applied for this step, and keep
     the total as ``applied_force``, ``applied_torque`` (what the step applies besides gravity,
@@ -329,7 +329,7 @@ def still_or_kinematic(b, dt: float) -> None:
     b["free_turn"] = b["omega"] * dt if moving else 0.0
 
 
-@njit
+@njit(python=True)
 def integrate_velocities(model, context, dt: float, work) -> None:
     """The velocity stage over a time ``dt`` (the step, or a substep of it): each dynamic
     body's velocity gets the integrator's increment, every force evaluated where the method
@@ -357,7 +357,7 @@ def integrate_velocities(model, context, dt: float, work) -> None:
         b["free_vel"][0], b["free_vel"][1], b["free_omega"] = b["vel"][0], b["vel"][1], b["omega"]
 
 
-@njit
+@njit(python=True)
 def plan_motion(bodies, dt: float) -> None:
     """Each body's move this step: the free move plus what the impulses changed,
     dp = dp_free + (v - v_free) dt (and likewise for the turn)."""
@@ -371,7 +371,7 @@ def plan_motion(bodies, dt: float) -> None:
         b["motion_turn"] = b["free_turn"] + (b["omega"] - b["free_omega"]) * dt
 
 
-@njit
+@njit(python=True)
 def move_bodies(bodies, rot, context) -> None:
     """Apply each body's planned move and turn (orientation in the world's representation)."""
     ctx = context[0]

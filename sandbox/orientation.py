@@ -24,7 +24,7 @@ NAMES = {"angle": ANGLE, "matrix": MATRIX, "complex": COMPLEX}
 FLOATS_STORED = {"angle": 1, "matrix": 4, "complex": 2}
 
 
-@njit
+@njit(python=True)
 def wrap_angle(phi: float) -> float:
     """Reduce an angle to [-pi, pi] by adding or subtracting 2 pi (slides, option 1)."""
     if -math.pi <= phi <= math.pi:

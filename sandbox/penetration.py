@@ -270,7 +270,7 @@ def first_push(contacts, k: int, bodies, bounds) -> tuple[bool, float]:
     return False, worst
 
 
-@njit
+@njit(python=True)
 def fix_positions(contacts, k: int, joints, bodies, rot, context) -> float:
     """The position stage every solver shares: the rebound, then up to
     ``position_iterations`` passes of the penetration fix, each followed by the joints'

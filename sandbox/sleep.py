@@ -73,7 +73,7 @@ def wake_body(b) -> None:
     b["sleep_time"] = 0.0
 
 
-@njit
+@njit(python=True)
 def wake_island(bodies, island: int) -> int:
     """Wake every body of an island; returns how many were asleep."""
     woken = 0

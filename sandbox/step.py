@@ -115,7 +115,7 @@ FAT_MARGIN = 0.02
 # extra pairs out of reach cost the narrowphase about what the sweeps saved)
 
 
-@njit
+@njit(python=True)
 def place_proxies(shapes, vertices, bodies, reach, proxies) -> None:
     """Each shape's box grown by ``reach`` = (margin (m), look-ahead (s), prediction (s)): the
     margin, with speculative contacts as far as the shape moves in the look-ahead
@@ -144,7 +144,7 @@ def broadphase_flags(body) -> int:
     return MOVING_KINEMATIC if moving_kinematic(body) else FIXED_FLAGS[body["kind"]]
 
 
-@njit
+@njit(python=True)
 def find_pairs(shapes, vertices, bodies, proxies, pairs, context) -> int:
     """Stage 1 by sweep and prune, keeping the sweep order from step to step: the sorted pair
     list into ``pairs[1]``. Returns the number of pairs, or minus the rows needed when ``pairs``
@@ -195,7 +195,7 @@ def boxes_hold(shapes, vertices, bodies, reach, proxies) -> bool:
     return True
 
 
-@njit
+@njit(python=True)
 def prepare(contacts, k: int, kept, shapes, moving, context) -> None:
     """Stage 5: :func:`sandbox.solvers.common.prepare_contacts` (the block solver's matrices
     when ``context["block_solver"]`` says so: the soft step has none), with the warm-start
@@ -284,7 +284,7 @@ def settle(contacts, k: int, joints, bodies, context) -> None:
         ctx["awake"], ctx["fell_asleep"] = fall_asleep(contacts, k, joints, bodies, ctx["dt"])
 
 
-@njit
+@njit(python=True)
 def finish_step(contacts, k: int, joints, bodies, context) -> int:
     """The end of every step: clear the forces, let islands at rest fall asleep
     (:func:`settle`), keep the impulses (:func:`store_impulses`, whose status it returns). The
@@ -332,7 +332,7 @@ def fast_step(
 SOLVE_THEN_RELAX = (True, False)
 
 
-@njit
+@njit(python=True)
 def soft_substeps(contacts, k: int, model, rot, context, ccd, work, plan) -> None:
     """The soft step's substeps (:mod:`sandbox.solvers.soft`; Box2D v3's ``b2SolverStep``):
     each integrates the velocities over h = dt / substeps, warm starts, solves the joints (as
@@ -368,7 +368,7 @@ def soft_substeps(contacts, k: int, model, rot, context, ccd, work, plan) -> Non
             move_bodies(bodies, rot, context)
 
 
-@njit
+@njit(python=True)
 def begin_soft(contacts, k: int, kept, model, context) -> None:
     """The soft step's prepare stages: contacts (with their softness and base separations)
     and joints, once for the whole step; the bodies' moves are counted from here."""

@@ -223,7 +223,7 @@ def _advance(shape_a, motion_a, shape_b, motion_b, limits, work):
     return t
 
 
-@njit
+@njit(python=True)
 def time_of_impact(shape_a, motion_a, shape_b, motion_b, target_separation=0.0, tolerance=1e-4):
     """Fraction t in [0, 1] of the step at which shapes a and b first come within
     ``target_separation`` (m, up to ``tolerance``) of each other; 1.0 when they do not this
@@ -398,7 +398,7 @@ def in_contact(contacts, k: int, i: int, j: int) -> bool:
     return q < k and contacts[q]["shape_a"] == i and contacts[q]["shape_b"] == j
 
 
-@njit
+@njit(python=True)
 def limit_ccd_motion(bodies, shapes, vertices, context, found):
     """Conservative advancement for the ``ccd`` bodies: each moves only up to its time of
     impact, a quarter of the contact margin short of touching (``motion`` and ``motion_turn``

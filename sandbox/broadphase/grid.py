@@ -58,7 +58,7 @@ def default_cell_size(aabb: np.ndarray) -> float:
     return CELL_FACTOR * h
 
 
-@njit
+@njit(python=True)
 def cell_ranges(aabb: np.ndarray, h: float):
     """Each shape's cell range ``(m, 4)`` int64 ``[cx0, cy0, cx1, cy1]``, ``c = floor(x / h)``:
     cell ``(cx, cy)`` is ``[cx h, (cx + 1) h) x [cy h, (cy + 1) h)``, fixed to the world."""

@@ -51,7 +51,7 @@ def sort_kept(idx: np.ndarray, key: np.ndarray, s: int, o: int, aabb: np.ndarray
             key[s + r] = aabb[idx[s + r], u]
 
 
-@njit
+@njit(python=True)
 def build_kdtree(aabb: np.ndarray, capacity: int, max_depth: int):
     """Nodes and the box order ``idx``: node ``q`` keeps ``idx[start[q]:start[q] + own[q]]``
     (sorted by ``key``, their lower end along the node's line, axis ``line[q]``), followed by

@@ -47,7 +47,7 @@ def root_square(aabb: np.ndarray):
     return x0, y0, x0 + side + pad, y0 + side + pad
 
 
-@njit
+@njit(python=True)
 def build_quadtree(aabb: np.ndarray, capacity: int, max_depth: int):
     """Nodes ``rect (q, 4)``, ``depth``, ``child`` (first of 4 children, -1 for a leaf),
     ``start``/``count`` into ``items`` (the shapes stored at each node, in increasing order)."""

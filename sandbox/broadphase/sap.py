@@ -76,7 +76,7 @@ ONE_BAND = (0.0, 0.0, 1)  # the layout of a sweep in one band (band_layout)
 MIN_BANDED = 64  # fewer boxes are swept in one band: they gain nothing (rain of 100: 3 us both)
 
 
-@njit
+@njit(python=True)
 def interval(a, d: int) -> tuple[float, float]:
     """The interval ``(lo, hi)`` (m) of box ``a`` = [xmin, ymin, xmax, ymax] along direction
     ``d`` (an index into :data:`DIRECTIONS`): u . (xmin, ymin), u . (xmax, ymax)."""
@@ -113,7 +113,7 @@ def candidates(proxies, d: int, layout) -> int:
     return total
 
 
-@njit
+@njit(python=True)
 def choose_direction(proxies, current: int, recount: int, banded: bool = True) -> tuple[int, int]:
     """``(direction, steps until the next choice)``: ``current`` while its time runs, else the
     direction whose :func:`candidates` cost least (the first on a tie): x or y in their bands,
@@ -132,14 +132,14 @@ def choose_direction(proxies, current: int, recount: int, banded: bool = True) -
     return best, RECOUNT
 
 
-@njit
+@njit(python=True)
 def across(d: int) -> int:
     """The axis the bands cut across sweep direction ``d``: y (1) for x and the slanted ones,
     x (0) for y."""
     return 1 if d >= 2 else 1 - d
 
 
-@njit
+@njit(python=True)
 def band_layout(proxies, d: int) -> tuple[float, float, int]:
     """``(y0 (m), bands per metre (1/m), count)`` of the bands across sweep direction ``d``.
 
@@ -167,7 +167,7 @@ def band_layout(proxies, d: int) -> tuple[float, float, int]:
     return y0, count / (y1 - y0), count
 
 
-@njit
+@njit(python=True)
 def band_of(y: float, layout) -> int:
     """The band holding ``y`` (m), ``layout`` from :func:`band_layout`: the first and last
     bands take what lies beyond them, and a value that is not a number falls in the first."""
@@ -202,7 +202,7 @@ def band_spans(proxies, d: int, layout):
     return starts, spans
 
 
-@njit
+@njit(python=True)
 def gather(proxies, d: int, layout):
     """The boxes band by band (``layout`` from :func:`band_layout`), each band in sweep order
     (the kept ``proxies["order"]``): a box goes into every band it crosses.
@@ -284,7 +284,7 @@ def sap_kernel(bands, d: int, buf, tested, slanted: bool, record: bool):
     return k, tests
 
 
-@njit
+@njit(python=True)
 def update_order(proxies, d: int, sorted_d: int) -> None:
     """Sort the sweep order ``proxies["order"]`` by (lower end along direction ``d``, shape
     index).

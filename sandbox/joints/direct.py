@@ -292,7 +292,7 @@ def has_loop(joints, bodies) -> bool:
     return False
 
 
-@njit
+@njit(python=True)
 def solve_joints_direct(joints, bodies, soft, use_bias: bool, inv_h: float) -> None:
     """One pass over the joints: motors and limits swept, then every point row at once (see
     the module); rigid and without bias when ``use_bias`` is off (the relax pass)."""

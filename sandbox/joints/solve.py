@@ -43,7 +43,7 @@ from sandbox.records import PIN, PIVOT
 AUTO, DIRECT, SWEEPS = 0, 1, 2  # settings.joint_solver (sandbox.settings.JOINT_SOLVERS)
 
 
-@njit
+@njit(python=True)
 def prepare_joints(joints, bodies, context) -> None:
     """Every pin and pivot prepared for a step of ``ctx["dt"]``."""
     ctx = context[0]
@@ -56,7 +56,7 @@ def prepare_joints(joints, bodies, context) -> None:
             prepare_pivot(j, bodies, ctx["dt"], warm)
 
 
-@njit
+@njit(python=True)
 def warm_start_joints(joints, bodies) -> None:
     """Apply every joint's accumulated impulses again."""
     for i in range(joints.shape[0]):
@@ -120,7 +120,7 @@ def warm_start_joints_soft(joints, bodies) -> None:
             warm_start_pivot_soft(j, bodies)
 
 
-@njit
+@njit(python=True)
 def solve_joints_soft(joints, bodies, soft, use_bias: bool, inv_h: float) -> None:
     """One soft pass over the joints (``soft`` = (bias_rate, mass_scale, impulse_scale));
     rigid and without bias when ``use_bias`` is off (the relax pass)."""
@@ -132,7 +132,7 @@ def solve_joints_soft(joints, bodies, soft, use_bias: bool, inv_h: float) -> Non
             solve_pivot_soft(j, bodies, soft, use_bias, inv_h)
 
 
-@njit
+@njit(python=True)
 def soft_joint_plan(joints, bodies, context) -> tuple[bool, bool, int]:
     """How a soft step treats its joints, decided once per step (the joint graph does not change
     within it): (solve them together in the biased pass, together in the relax pass, biased

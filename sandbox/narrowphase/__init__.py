@@ -151,7 +151,7 @@ def collide_pair(i, j, shape_pair, body_pair, wp, margin):
     )
 
 
-@njit
+@njit(python=True)
 def collide_into(pairs, npairs, shapes, vertices, bodies, joints, reach, contacts) -> int:
     """Contact manifolds of the shape pairs ``pairs[:npairs]`` at the bodies' current poses,
     written in pair order into ``contacts`` (CONTACT records), at most one per pair; pairs of

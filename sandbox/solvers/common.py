@@ -323,7 +323,7 @@ def warm_start(contacts, k: int, bodies) -> None:
         warm_start_contact(contacts[i], bodies)
 
 
-@njit
+@njit(python=True)
 def restitution(contacts, k: int, bodies, threshold: float) -> None:
     """Bounce: v_r . n = -e v_r0 . n, with the approach speed v_r0 . n of the start of the step.
 

@@ -163,7 +163,7 @@ def each_increment(points, count: int, nx: float, ny: float, mass, va, vb, mu: f
     return va, vb
 
 
-@njit
+@njit(python=True)
 def sweep(contacts, k: int, bodies, accumulate: bool) -> None:
     """One sweep of sequential impulses over the first ``k`` contacts, in :func:`visit` order
     (:func:`visit_contact`)."""
@@ -180,7 +180,7 @@ def sweeps(contacts, k: int, joints, bodies, accumulate: bool, n: int) -> None:
         sweep(contacts, k, bodies, accumulate)
 
 
-@njit
+@njit(python=True)
 def visit_contact(c, bodies, accumulate: bool) -> None:
     """One visit of contact ``c`` (:func:`visit_points`) with its bodies' velocities."""
     a, b = c["a"], c["b"]
@@ -218,7 +218,7 @@ def visit_points(c, va, vb, accumulate: bool):
     return va, vb
 
 
-@njit
+@njit(python=True)
 def coloured_sweeps(contacts, k: int, joints, bodies, n: int) -> None:
     """``n`` sweeps of accumulated impulses, each the joints, then the contacts colour by
     colour, eight at a time: in each colour those with two points (:mod:`sandbox.solvers.wide`),
@@ -344,7 +344,7 @@ def large_step(context) -> bool:
     return ctx["warm_start"] and g * ctx["dt"] * ctx["dt"] > reach
 
 
-@njit
+@njit(python=True)
 def solve(contacts, k: int, joints, bodies, context) -> None:
     """``settings.iterations`` sweeps; in each, the joints and then the contacts.
 

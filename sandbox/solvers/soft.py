@@ -75,7 +75,7 @@ MAX_CONTACT_HERTZ_PER_RATE = 0.125  # contact_hertz is capped at this times the 
 HOLD_SLOPE = 0.5  # settings.hold_ratio: resting on: the normal within 60 degrees of upright
 
 
-@njit
+@njit(python=True)
 def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
     """(bias_rate (1/s), mass_scale, impulse_scale) of a soft constraint of frequency
     ``hertz`` and damping ratio ``zeta`` over a substep ``h`` (s); rigid (0, 1, 0) at 0 Hz."""

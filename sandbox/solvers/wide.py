@@ -67,7 +67,7 @@ FIELDS = int(P1) // LANES + FIELDS_PER_POINT  # fields per contact
 BLOCK = FIELDS * LANES  # numbers per block
 
 
-@njit
+@njit(python=True)
 def colour(
     contacts, k: int, bodies, colours, own: bool = False, single: bool = False, ends=None
 ) -> int:

@@ -1,0 +1,84 @@
+"""A compiled function gets numba's Python entry only when Python calls it (sandbox.jit.Kernel).
+
+A function that only other compiled functions call is compiled without the wrapper that
+unboxes Python's arguments; one that Python calls has it; one marked ``@njit(python=True)``
+(called both ways) is compiled once, with it, for both. The two versions are cached under
+keys of their own, so a later process never hands Python the version without an entry."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from sandbox import jit
+
+pytestmark = pytest.mark.skipif(not jit.JIT_ENABLED, reason="nothing compiles")
+
+KERNELS = """
+from sandbox.jit import njit
+
+
+@njit
+def inner(x):
+    return 2.0 * x
+
+
+@njit(python=True)
+def shared(x):
+    return x + 1.0
+
+
+@njit
+def outer(x):
+    return inner(x) + shared(x)
+"""
+
+
+def entries(function) -> list[bool]:
+    """For each compiled version of ``function``: whether its library has a Python entry."""
+    return ["cpython" in result.library.get_llvm_str() for result in function.overloads.values()]
+
+
+def test_only_what_python_calls_has_a_python_entry(tmp_path, monkeypatch):
+    (tmp_path / "kernels_entry.py").write_text(KERNELS)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(jit, "_CACHE", False)
+    import kernels_entry as k
+
+    assert k.outer(1.5) == 5.5  # 2 * 1.5 + (1.5 + 1)
+    assert entries(k.outer) == [True]  # Python called it
+    assert entries(k.inner) == []  # no version with an entry: Python never called it
+    assert entries(k.inner.inner) == [False]  # the version outer calls
+    assert entries(k.shared) == [True]  # one version for both
+    assert "_inner" not in k.shared.__dict__
+    assert k.inner(1.5) == 3.0  # called from Python after all: a version with an entry
+    assert entries(k.inner) == [True] and entries(k.inner.inner) == [False]
+
+
+def test_a_cached_version_without_an_entry_is_never_what_python_gets(tmp_path):
+    (tmp_path / "kernels_cached.py").write_text(KERNELS)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env.update(PYTHONPATH=os.pathsep.join([str(tmp_path), *sys.path]))
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
+    code = (
+        "import kernels_cached as k\n"
+        "print(k.{call})\n"
+        "print(sum(k.{name}.stats.cache_hits.values()), sum(k.{name}.stats.cache_misses.values()))"
+    )
+
+    def run(name: str, call: str) -> list[str]:
+        res = subprocess.run(
+            [sys.executable, "-c", code.format(name=name, call=call)],
+            cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
+        )  # fmt: skip
+        assert res.returncode == 0, res.stderr  # a Python call of a version without an entry
+        return res.stdout.split("\n")  # crashes the process (numba does not check)
+
+    assert run("outer", "outer(1.5)")[:2] == ["5.5", "0 1"]  # compiled, inner without entry
+    assert run("outer", "outer(1.5)")[:2] == ["5.5", "1 0"]  # loaded
+    assert run("inner", "inner(1.5)")[:2] == ["3.0", "0 1"]  # not the cached one: compiled
+    assert run("inner", "inner(1.5)")[:2] == ["3.0", "1 0"]  # now loaded, with its entry
+    assert run("outer", "outer(1.5)")[:2] == ["5.5", "1 0"]  # and outer's still loads
