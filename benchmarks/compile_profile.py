@@ -18,7 +18,9 @@ calls ten functions re-optimizes and compiles all ten once more, and the one-cal
 its stages. The table of functions lists the costliest libraries with the functions their
 final module holds (its own and those linked in) and the libraries linked. The line "each
 function through LLVM's module passes and machine code N times" says how often, on the
-average, a function's code went through them.
+average, a function's code went through them. The last line names the functions compiled
+twice, with numba's Python entry and without (``sandbox.jit.Kernel``): called from Python as
+well as from compiled code, each should be marked ``@njit(python=True)``.
 
 Found with it (numba 0.68, the project's 2-core machine, an empty cache): the iterative
 solver's family compiles 248 libraries in 48 to 68 s, as the hour goes. LLVM takes about half
@@ -148,7 +150,27 @@ def target(families: list[str], top: int) -> int:
     warmup.warm_families(chosen, report=lambda line: None)
     total = time.perf_counter() - start
     print(report(clock, owners(), families, total, top))
+    twice = compiled_both_ways()
+    print(f"\ncompiled for Python and again for compiled callers: {', '.join(twice) or 'none'}")
     return 0
+
+
+def compiled_both_ways() -> list[str]:
+    """The functions compiled twice, with numba's Python entry and without
+    (:class:`sandbox.jit.Kernel`): each is called both from Python and from compiled code, and
+    should be marked ``@njit(python=True)`` to share one version."""
+    import gc
+
+    from sandbox.jit import Kernel
+
+    return sorted(
+        f"{thing.py_func.__module__}.{thing.py_func.__qualname__}"
+        for thing in gc.get_objects()
+        if isinstance(thing, Kernel)
+        and thing.signatures
+        and "_inner" in thing.__dict__
+        and thing.inner.signatures
+    )
 
 
 def report(clock: Clock, names: dict[int, str], families, total: float, top: int) -> str:
