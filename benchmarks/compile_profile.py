@@ -166,10 +166,7 @@ def compiled_both_ways() -> list[str]:
     return sorted(
         f"{thing.py_func.__module__}.{thing.py_func.__qualname__}"
         for thing in gc.get_objects()
-        if isinstance(thing, Kernel)
-        and thing.signatures
-        and "_inner" in thing.__dict__
-        and thing.inner.signatures
+        if isinstance(thing, Kernel) and thing.compiled_both_ways
     )
 
 

@@ -228,6 +228,13 @@ if JIT_ENABLED:
             return version
 
         @property
+        def compiled_both_ways(self) -> bool:
+            """Whether this function was compiled for Python and again for compiled callers:
+            called both ways, it should be marked ``@njit(python=True)``."""
+            version = self.__dict__.get("_inner")
+            return bool(self.signatures and version is not None and version.signatures)
+
+        @property
         def _numba_type_(self):  # what numba types a call from compiled code to
             return self._type if self.both else self.inner._type
 

@@ -22,7 +22,7 @@ from sandbox.jit import njit
 
 
 @njit
-def inner(x):
+def helper(x):
     return 2.0 * x
 
 
@@ -33,7 +33,7 @@ def shared(x):
 
 @njit
 def outer(x):
-    return inner(x) + shared(x)
+    return helper(x) + shared(x)
 """
 
 
@@ -50,12 +50,14 @@ def test_only_what_python_calls_has_a_python_entry(tmp_path, monkeypatch):
 
     assert k.outer(1.5) == 5.5  # 2 * 1.5 + (1.5 + 1)
     assert entries(k.outer) == [True]  # Python called it
-    assert entries(k.inner) == []  # no version with an entry: Python never called it
-    assert entries(k.inner.inner) == [False]  # the version outer calls
+    assert entries(k.helper) == []  # no version with an entry: Python never called it
+    assert entries(k.helper.inner) == [False]  # the version outer calls
     assert entries(k.shared) == [True]  # one version for both
-    assert "_inner" not in k.shared.__dict__
-    assert k.inner(1.5) == 3.0  # called from Python after all: a version with an entry
-    assert entries(k.inner) == [True] and entries(k.inner.inner) == [False]
+    assert "_inner" not in k.shared.__dict__ and not k.shared.compiled_both_ways
+    assert not k.helper.compiled_both_ways
+    assert k.helper(1.5) == 3.0  # called from Python after all: a version with an entry
+    assert entries(k.helper) == [True] and entries(k.helper.inner) == [False]
+    assert k.helper.compiled_both_ways  # what compile_profile.py reports, to be marked
 
 
 def test_a_cached_version_without_an_entry_is_never_what_python_gets(tmp_path):
@@ -77,8 +79,8 @@ def test_a_cached_version_without_an_entry_is_never_what_python_gets(tmp_path):
         assert res.returncode == 0, res.stderr  # a Python call of a version without an entry
         return res.stdout.split("\n")  # crashes the process (numba does not check)
 
-    assert run("outer", "outer(1.5)")[:2] == ["5.5", "0 1"]  # compiled, inner without entry
+    assert run("outer", "outer(1.5)")[:2] == ["5.5", "0 1"]  # compiled, helper without entry
     assert run("outer", "outer(1.5)")[:2] == ["5.5", "1 0"]  # loaded
-    assert run("inner", "inner(1.5)")[:2] == ["3.0", "0 1"]  # not the cached one: compiled
-    assert run("inner", "inner(1.5)")[:2] == ["3.0", "1 0"]  # now loaded, with its entry
+    assert run("helper", "helper(1.5)")[:2] == ["3.0", "0 1"]  # not the cached one: compiled
+    assert run("helper", "helper(1.5)")[:2] == ["3.0", "1 0"]  # now loaded, with its entry
     assert run("outer", "outer(1.5)")[:2] == ["5.5", "1 0"]  # and outer's still loads
