@@ -180,7 +180,7 @@ def test_compiled_functions_have_no_c_callable_twin():
 
 
 @pytest.mark.skipif(not compiled.JIT_ENABLED, reason="nothing compiles")
-def test_full_collections_are_rarer_only_while_compiling():
+def test_collections_are_rarer_only_while_compiling():
     import gc
 
     import numba
@@ -206,4 +206,25 @@ def test_full_collections_are_rarer_only_while_compiling():
     finally:
         numba.core.event.unregister("numba:compile", listener)
     young, middle, full = before
-    assert seen and seen[0] == (young, middle, full * compiled.WhileCompiling.RARER)
+    rules = compiled.WhileCompiling
+    assert seen and seen[0] == (max(young, rules.YOUNG), middle, full * rules.RARER)
+
+
+@pytest.mark.skipif(not compiled.JIT_ENABLED, reason="nothing compiles")
+def test_a_warmup_keeps_the_compile_settings_from_start_to_end():
+    """``compiling_process`` (every ``sandbox warmup`` process): the collector's settings of a
+    compile hold between compiles too, not only during each."""
+    code = (
+        "import gc; gc.set_threshold(700, 10, 10)\n"
+        "from sandbox import jit\n"
+        "jit.compiling_process()\n"
+        "held = gc.get_threshold()\n"
+        "jit.njit(cache=False)(lambda x: x + 1)(1)\n"
+        "print((held, gc.get_threshold()))\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert out.returncode == 0, out.stderr
+    rules = compiled.WhileCompiling
+    expected = (rules.YOUNG, 10, 10 * rules.RARER)
+    assert out.stdout.strip() == str((expected, expected))

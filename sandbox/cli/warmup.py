@@ -59,10 +59,11 @@ def run(args: argparse.Namespace) -> int:
     says what it compiles itself)."""
     import sys
 
-    from sandbox.jit import quiet_compiles
+    from sandbox.jit import compiling_process, quiet_compiles
     from sandbox.warmup import warm_part, warm_up, where
 
     quiet_compiles()
+    compiling_process()
     if args.part is not None:  # a share of another warmup, which marks the cache warm
         warm_part(*args.part, (lambda line: None) if args.quiet else _print, args.lessons)
         return 0
