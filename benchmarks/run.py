@@ -22,8 +22,7 @@ more, the table must show wall time.
 
 Then: frames per second of GIF output for 500 bodies at 480 px (``bench_render.py``), and the
 wall time of every lesson (``sandbox lessons`` in a subprocess; skipped with ``--quick``), and
-with ``--cold-lessons`` of all lessons from an empty compile cache (and a plain-Python probe of
-the machine's speed right before and after it, :func:`python_probe`).
+with ``--cold-lessons`` of all lessons from an empty compile cache.
 
 Writes ``benchmarks/results.csv`` (both clocks) and ``benchmarks/results.png`` (ratios per
 scene, a line at 1), prints the table, and puts it into ``benchmarks/README.md`` between the
@@ -236,27 +235,12 @@ def bench_gif() -> dict:
     return row("render_gif_500", bodies=500, steps=120, value=f"{fps:.1f}", unit="frames/s")
 
 
-def python_probe(rounds: int = 3) -> float:
-    """Seconds of a fixed plain-Python loop (5 million additions), the best of ``rounds``: how
-    fast this machine runs Python at the moment. On the project's 2-core machine it took 0.57
-    to 0.65 s in a calm moment and 0.93 to 1.08 s in a slow one, the same hour."""
-    best = float("inf")
-    for _ in range(rounds):
-        start, total = time.perf_counter(), 0
-        for i in range(5_000_000):
-            total += i * i
-        best = min(best, time.perf_counter() - start)
-    return best
-
-
 def bench_lessons(cold: bool = False) -> list[dict]:
     """Wall time of ``sandbox lessons`` (all of them, one subprocess), total and per lesson,
     with the compile cache as it is (warm after the warm-up); ``cold``: only the total, from an
     empty compile cache (a temporary ``NUMBA_CACHE_DIR``), the first run of a class, and the
-    part of it the warmup took, with :func:`python_probe` right before and after it (the
-    machine's speed at the time: the cold run's time moves with it)."""
+    part of it the warmup took."""
     env = dict(os.environ)
-    probe = python_probe() if cold else 0.0
     with tempfile.TemporaryDirectory() as cache:
         if cold:
             env["NUMBA_CACHE_DIR"] = cache
@@ -286,8 +270,6 @@ def bench_lessons(cold: bool = False) -> list[dict]:
         if warmup:  # the warmup the command runs first, on a machine where nothing is compiled
             rows.append(row("warmup_cold_cache", value=warmup.group(1), unit="s", status=status))
         rows.append(row("lessons_total_cold_cache", value=f"{total:.1f}", unit="s", status=status))
-        probes = f"{probe:.2f} / {python_probe():.2f}"
-        rows.append(row("python_probe_before_after", value=probes, unit="s", status=status))
         return rows
     rows.append(row("lessons_total", value=f"{total:.1f}", unit="s", status=status))
     return rows

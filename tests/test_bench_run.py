@@ -40,17 +40,3 @@ def test_only_with_or_without_names_writes_nothing(stubbed, capsys, only, cases)
 def test_a_full_run_writes_its_results(stubbed):
     run.main(["--quick", "--no-readme"])
     assert stubbed[-3:] == ["bench_gif", "write_csv", "write_plot"]
-
-
-def test_the_cold_lessons_come_with_the_machines_speed_before_and_after(monkeypatch):
-    """``--cold-lessons``: the total, the warmup in it, and the plain-Python probe timed right
-    before and after the run (the cold run's time moves with the machine's speed)."""
-    probes = iter([0.61, 0.97])
-    monkeypatch.setattr(run, "python_probe", lambda: next(probes))
-    out = "done in 47.3 s: the lessons' kernels are compiled\n== 01_projectile: ok in 3.5 s\n"
-    done = type("Done", (), {"stdout": out, "stderr": "", "returncode": 0})
-    monkeypatch.setattr(run.subprocess, "run", lambda *a, **k: done)
-    rows = {r["benchmark"]: r for r in run.bench_lessons(cold=True)}
-    assert rows["warmup_cold_cache"]["value"] == "47.3"
-    assert rows["python_probe_before_after"]["value"] == "0.61 / 0.97"
-    assert "lesson 01_projectile" not in rows  # the cold run keeps only its totals
