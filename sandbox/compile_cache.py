@@ -39,8 +39,8 @@ WARM_FILE = "warm"
 COMPILE_LOG = "SANDBOX_COMPILE_LOG"
 
 
-# modules that set how the kernels compile, without compiling any themselves
-COMPILER_SETTINGS = ("jit.py", "vector_width.py")
+# modules that set how the kernels compile (and are cached), without compiling any themselves
+COMPILER_SETTINGS = ("jit.py", "vector_width.py", "ir_only.py")
 
 
 def kernel_sources_hash() -> str:

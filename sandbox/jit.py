@@ -211,7 +211,15 @@ if JIT_ENABLED:
     )
 
     from numba.core.caching import FunctionCache
+    from numba.core.compiler import Compiler
     from numba.core.registry import CPUDispatcher
+
+    from sandbox.ir_only import IROnlyCompiler, install
+
+    # the versions without a Python entry make no machine code (sandbox.ir_only); numba's own
+    # compiler where this numba's code library lacks what that relies on
+    IR_ONLY = install()
+    _INNER_COMPILER = IROnlyCompiler if IR_ONLY else Compiler
 
     class _InnerCache(FunctionCache):
         """The cache of a function's version without a Python entry (:class:`Kernel`): in the
@@ -245,7 +253,7 @@ if JIT_ENABLED:
             version = self.__dict__.get("_inner")
             if version is None:
                 options = {**self.targetoptions, "no_cpython_wrapper": True}
-                version = CPUDispatcher(self.py_func, self.locals, options)
+                version = CPUDispatcher(self.py_func, self.locals, options, _INNER_COMPILER)
                 if isinstance(self._cache, FunctionCache):
                     version._cache = _InnerCache(self.py_func)
                 self.__dict__["_inner"] = version
@@ -287,6 +295,7 @@ if JIT_ENABLED:
     literally = numba.literally  # compile one version of a function per value of an argument
 
 else:
+    IR_ONLY = False  # nothing compiles
 
     def njit(*args, **kwargs):
         """Plain-Python stand-in for ``numba.njit`` (SANDBOX_JIT=0)."""

@@ -84,3 +84,65 @@ def test_a_cached_version_without_an_entry_is_never_what_python_gets(tmp_path):
     assert run("helper", "helper(1.5)")[:2] == ["3.0", "0 1"]  # not the cached one: compiled
     assert run("helper", "helper(1.5)")[:2] == ["3.0", "1 0"]  # now loaded, with its entry
     assert run("outer", "outer(1.5)")[:2] == ["5.5", "1 0"]  # and outer's still loads
+
+
+# --- the versions without an entry keep their IR and make no machine code (sandbox.ir_only) -----
+IR_KERNELS = (
+    KERNELS
+    + """
+
+@njit
+def other(x):
+    return helper(x) - 1.0
+"""
+)
+
+
+def machine_code(function) -> list[bool]:
+    """For each compiled version of ``function``: whether the JIT engine holds its code."""
+    out = []
+    for result in function.overloads.values():
+        engine = result.library.codegen._engine
+        out.append(engine.is_symbol_defined(result.fndesc.mangled_name))
+    return out
+
+
+@pytest.mark.skipif(not jit.IR_ONLY, reason="this numba's code library lacks what it needs")
+def test_a_version_without_an_entry_makes_no_machine_code(tmp_path, monkeypatch):
+    (tmp_path / "kernels_ir.py").write_text(IR_KERNELS)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(jit, "_CACHE", False)
+    import kernels_ir as k
+
+    assert k.outer(1.5) == 5.5 and k.other(1.5) == 2.0  # both link helper's IR
+    assert machine_code(k.helper.inner) == [False]  # made once, for nothing to run it
+    assert machine_code(k.outer) == [True] and machine_code(k.shared) == [True]
+    assert k.helper(1.5) == 3.0 and machine_code(k.helper) == [True]  # Python's own version
+
+
+@pytest.mark.skipif(not jit.IR_ONLY, reason="this numba's code library lacks what it needs")
+def test_a_cached_version_without_an_entry_links_into_a_new_caller(tmp_path):
+    """A later process compiles a new caller of a function whose version without an entry is
+    in the cache as IR alone: it loads that IR (no compile, no machine code) and links it."""
+    (tmp_path / "kernels_ir_cached.py").write_text(IR_KERNELS)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env.update(PYTHONPATH=os.pathsep.join([str(tmp_path), *sys.path]))
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
+    code = (
+        "import kernels_ir_cached as k\n"
+        "print(k.{call})\n"
+        "inner = k.helper.__dict__.get('_inner')\n"
+        "print(sum(inner.stats.cache_hits.values()) if inner else '-')\n"
+    )
+
+    def run(call: str) -> list[str]:
+        res = subprocess.run(
+            [sys.executable, "-c", code.format(call=call)],
+            cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
+        )  # fmt: skip
+        assert res.returncode == 0, res.stderr
+        return res.stdout.split("\n")[:2]
+
+    assert run("outer(1.5)") == ["5.5", "0"]  # compiled, helper's IR written to the cache
+    assert run("other(1.5)") == ["2.0", "1"]  # a new caller: helper's IR loaded and linked
+    assert run("other(1.5)") == ["2.0", "-"]  # the caller itself loaded: helper not needed
