@@ -52,6 +52,8 @@ class IROnlyCompiler(Compiler):
     """numba's nopython compiler, the library it lowers into marked IR-only (:class:`MarkIROnly`)."""
 
     def define_pipelines(self):
+        if self.state.flags.force_pyobject:  # object mode: numba's own pipeline
+            return super().define_pipelines()
         pm = DefaultPassBuilder.define_nopython_pipeline(self.state)
         pm.add_pass_after(MarkIROnly, AnnotateTypes)
         pm.finalize()

@@ -60,11 +60,22 @@ def test_only_what_python_calls_has_a_python_entry(tmp_path, monkeypatch):
     assert k.helper.compiled_both_ways  # what compile_profile.py reports, to be marked
 
 
+def in_process(folder, code: str) -> list[str]:
+    """The first two lines ``code`` prints, run in a new process with ``folder`` on its path
+    and its compile cache in ``folder``/cache (a crash fails the test)."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env.update(PYTHONPATH=os.pathsep.join([str(folder), *sys.path]))
+    env["NUMBA_CACHE_DIR"] = str(folder / "cache")
+    res = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=folder, env=env, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert res.returncode == 0, res.stderr
+    return res.stdout.split("\n")[:2]
+
+
 def test_a_cached_version_without_an_entry_is_never_what_python_gets(tmp_path):
     (tmp_path / "kernels_cached.py").write_text(KERNELS)
-    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
-    env.update(PYTHONPATH=os.pathsep.join([str(tmp_path), *sys.path]))
-    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
     code = (
         "import kernels_cached as k\n"
         "print(k.{call})\n"
@@ -72,12 +83,8 @@ def test_a_cached_version_without_an_entry_is_never_what_python_gets(tmp_path):
     )
 
     def run(name: str, call: str) -> list[str]:
-        res = subprocess.run(
-            [sys.executable, "-c", code.format(name=name, call=call)],
-            cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
-        )  # fmt: skip
-        assert res.returncode == 0, res.stderr  # a Python call of a version without an entry
-        return res.stdout.split("\n")  # crashes the process (numba does not check)
+        # a Python call of a version without an entry crashes the process (numba does not check)
+        return in_process(tmp_path, code.format(name=name, call=call))
 
     assert run("outer", "outer(1.5)")[:2] == ["5.5", "0 1"]  # compiled, helper without entry
     assert run("outer", "outer(1.5)")[:2] == ["5.5", "1 0"]  # loaded
@@ -125,9 +132,6 @@ def test_a_cached_version_without_an_entry_links_into_a_new_caller(tmp_path):
     """A later process compiles a new caller of a function whose version without an entry is
     in the cache as IR alone: it loads that IR (no compile, no machine code) and links it."""
     (tmp_path / "kernels_ir_cached.py").write_text(IR_KERNELS)
-    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
-    env.update(PYTHONPATH=os.pathsep.join([str(tmp_path), *sys.path]))
-    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
     code = (
         "import kernels_ir_cached as k\n"
         "print(k.{call})\n"
@@ -136,12 +140,7 @@ def test_a_cached_version_without_an_entry_links_into_a_new_caller(tmp_path):
     )
 
     def run(call: str) -> list[str]:
-        res = subprocess.run(
-            [sys.executable, "-c", code.format(call=call)],
-            cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
-        )  # fmt: skip
-        assert res.returncode == 0, res.stderr
-        return res.stdout.split("\n")[:2]
+        return in_process(tmp_path, code.format(call=call))
 
     assert run("outer(1.5)") == ["5.5", "0"]  # compiled, helper's IR written to the cache
     assert run("other(1.5)") == ["2.0", "1"]  # a new caller: helper's IR loaded and linked
