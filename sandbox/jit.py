@@ -42,6 +42,10 @@ __all__ = [
 
 
 if JIT_ENABLED:
+    from sandbox.compile_work import HIGHLIGHTING
+
+    os.environ.setdefault(HIGHLIGHTING, "1")  # before numba is imported (sandbox.compile_work)
+
     import numba
     import numba.core.cpu
     import numba.core.event
@@ -221,6 +225,11 @@ if JIT_ENABLED:
     IR_ONLY = install()
     _INNER_COMPILER = IROnlyCompiler if IR_ONLY else Compiler
 
+    from sandbox import compile_work
+
+    # less of numba's own Python work while compiling, the same code (sandbox.compile_work)
+    COMPILE_WORK = compile_work.install()
+
     class _InnerCache(FunctionCache):
         """The cache of a function's version without a Python entry (:class:`Kernel`): in the
         same index file as the other version's, under keys of its own."""
@@ -296,6 +305,7 @@ if JIT_ENABLED:
 
 else:
     IR_ONLY = False  # nothing compiles
+    COMPILE_WORK: list[str] = []
 
     def njit(*args, **kwargs):
         """Plain-Python stand-in for ``numba.njit`` (SANDBOX_JIT=0)."""
