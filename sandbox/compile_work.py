@@ -20,9 +20,11 @@ changes these three and nothing else:
   for the lessons' families.
 - **Error messages not styled.** Each overload template that does not match records an error
   message whose parts numba styles for a terminal, initialising and tearing down colorama for
-  each part (47 thousand times in the iterative step's family). numba's own setting
-  ``NUMBA_DISABLE_ERROR_MESSAGE_HIGHLIGHTING`` turns that off; :mod:`sandbox.jit` sets it
-  before numba is imported, unless it is set already.
+  each part (47 thousand times in the iterative step's family). numba's colour scheme is made
+  one that leaves text as it is (:class:`PlainText`), as numba's own setting
+  ``NUMBA_DISABLE_ERROR_MESSAGE_HIGHLIGHTING`` would, without that setting in the environment
+  (which the course's forked notebook kernels compare with their server's, and which the user's
+  own processes would inherit).
 
 The code numba generates is the same to the byte (``tests/test_compile_work.py`` compares the
 LLVM IR of a step compiled with and without these), so are the results. Each change is made
@@ -33,8 +35,6 @@ from __future__ import annotations
 
 import copy
 import types
-
-HIGHLIGHTING = "NUMBA_DISABLE_ERROR_MESSAGE_HIGHLIGHTING"  # numba's setting, read when imported
 
 _defaults: dict[type, dict] = {}  # each flags class: its options' defaults
 _hashes: dict[type, int] = {}  # each flags class: numba's hash of its flags
@@ -97,6 +97,20 @@ def _block_type():
     return ir.Block
 
 
+def plain_text_scheme():
+    """numba's colour scheme that returns every part of a message as it is (numba's own, for
+    when colorama is missing or highlighting is turned off)."""
+    from numba.core import errors
+
+    class PlainText(errors._DummyColorScheme):
+        def code(self, msg):
+            return msg
+
+        errmsg = filename = indicate = highlight = reset = code
+
+    return PlainText()
+
+
 def install() -> list[str]:
     """Make the changes numba's code allows; returns the names of those made."""
     global _original_copy
@@ -120,6 +134,11 @@ def install() -> list[str]:
         names = {name: getattr(copy, name) for name in copy.__all__}
         inline_closurecall.copy = types.SimpleNamespace(**{**names, "deepcopy": shared_block_copy})
         made.append("inlining")
+    from numba.core import errors
+
+    if hasattr(errors, "_DummyColorScheme") and hasattr(errors, "_termcolor_inst"):
+        errors._termcolor_inst = plain_text_scheme()  # what errors.termcolor() hands out
+        made.append("plain errors")
     return made
 
 

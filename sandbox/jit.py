@@ -42,10 +42,6 @@ __all__ = [
 
 
 if JIT_ENABLED:
-    from sandbox.compile_work import HIGHLIGHTING
-
-    os.environ.setdefault(HIGHLIGHTING, "1")  # before numba is imported (sandbox.compile_work)
-
     import numba
     import numba.core.cpu
     import numba.core.event

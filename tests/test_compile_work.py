@@ -122,7 +122,7 @@ def test_the_same_code_with_and_without_the_changes(tmp_path):
     (tmp_path / "kernels_inline.py").write_text(KERNELS)
     with_changes, ir_with = compiled(tmp_path, "")
     without, ir_without = compiled(tmp_path, WITHOUT)
-    assert with_changes == "0.5 ['flags', 'inlining']"  # -1 + 0.5 + 1
+    assert with_changes == "0.5 ['flags', 'inlining', 'plain errors']"  # -1 + 0.5 + 1
     assert without == "0.5 []"
     assert "5clampB" not in ir_with  # inlined: no call left to it (nor its mangled name)
     assert ir_with == ir_without
@@ -131,7 +131,24 @@ def test_the_same_code_with_and_without_the_changes(tmp_path):
 def test_error_messages_are_not_styled():
     from numba.core import errors
 
-    from sandbox.compile_work import HIGHLIGHTING
-
-    assert os.environ.get(HIGHLIGHTING)  # set before numba was imported
+    assert "plain errors" in jit.COMPILE_WORK
     assert errors.termcolor().errmsg("no match") == "no match"
+    assert errors.termcolor().highlight("x") == "x"
+
+
+def test_importing_the_engine_leaves_the_environment_alone():
+    """The course's notebook kernels are forked only when their environment matches their
+    server's in what imports read (sandbox.course.prefork): importing the engine must not
+    change it."""
+    code = (
+        "import os; before = dict(os.environ)\n"
+        "import sandbox, sandbox.jit, sandbox.world\n"
+        "changed = {k for k in set(before) | set(os.environ) if before.get(k) != os.environ.get(k)}\n"
+        "print(sorted(changed))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    res = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.strip() == "[]"
