@@ -21,13 +21,14 @@ changes these three and nothing else:
 - **Error messages not styled.** Each overload template that does not match records an error
   message whose parts numba styles for a terminal, initialising and tearing down colorama for
   each part (47 thousand times in the iterative step's family). numba's colour scheme is made
-  one that leaves text as it is (:class:`PlainText`), as numba's own setting
+  one that leaves text as it is (:func:`plain_text_scheme`), as numba's own setting
   ``NUMBA_DISABLE_ERROR_MESSAGE_HIGHLIGHTING`` would, without that setting in the environment
   (which the course's forked notebook kernels compare with their server's, and which the user's
   own processes would inherit).
 
 The code numba generates is the same to the byte (``tests/test_compile_work.py`` compares the
-LLVM IR of a step compiled with and without these), so are the results. Each change is made
+LLVM IR of a kernel that inlines a function, compiled with and without these; every library of
+the iterative step's family was compared so once), so are the results. Each change is made
 only if numba's code is as expected; else that part is left as numba's own.
 """
 
@@ -41,6 +42,7 @@ _hashes: dict[type, int] = {}  # each flags class: numba's hash of its flags
 _block_memo: dict | None = None  # the memo the blocks of one copy of a function's IR share
 _original_copy = None  # numba's FunctionIR.copy
 ORIGINAL_FLAGS: dict[str, object] = {}  # numba's own values, __hash__ and __eq__ of flags
+_made: list[str] | None = None  # the changes made, once installed
 
 
 def flags_values(self) -> dict:
@@ -81,7 +83,7 @@ def copy_function_ir(self):
     return _original_copy(self)
 
 
-def shared_block_copy(x, memo=None, _nil=None):
+def shared_block_copy(x, memo=None):
     """``copy.deepcopy`` as numba's inlining calls it: a block copied right after its
     function's IR shares the memo of that copy (so its scope is copied once for all blocks); a
     block seen twice, or anything else, is copied as before."""
@@ -112,9 +114,11 @@ def plain_text_scheme():
 
 
 def install() -> list[str]:
-    """Make the changes numba's code allows; returns the names of those made."""
-    global _original_copy
-    made = []
+    """Make the changes numba's code allows (once); returns the names of those made."""
+    global _original_copy, _made
+    if _made is not None:
+        return list(_made)
+    made = _made = []
     from numba.core import inline_closurecall, ir, targetconfig
 
     config = targetconfig.TargetConfig

@@ -74,6 +74,8 @@ def test_flags_give_numbas_own_answers():
             assert (a == b) == original["eq"](a, b), (a, b)
     assert nrt == nrt_again and default_set == plain and nrt != both
     assert (plain == "flags") is False
+    assert compile_work.install() == jit.COMPILE_WORK  # a second install changes nothing more
+    assert original["eq"] is not compile_work.flags_equal  # numba's own, kept
 
 
 def test_the_blocks_of_one_copy_share_one_scope():
