@@ -43,6 +43,8 @@ _block_memo: dict | None = None  # the memo the blocks of one copy of a function
 _original_copy = None  # numba's FunctionIR.copy
 ORIGINAL_FLAGS: dict[str, object] = {}  # numba's own values, __hash__ and __eq__ of flags
 _made: list[str] | None = None  # the changes made, once installed
+_config_class: type | None = None  # numba's TargetConfig, the base class of its flags
+_block_class: type | None = None  # numba's IR block
 
 
 def flags_values(self) -> dict:
@@ -66,9 +68,7 @@ def flags_hash(self) -> int:
 def flags_equal(self, other) -> bool:
     """Equal flags have the same value for every option; flags of one class that set the same
     options to the same values are equal without looking at the defaults."""
-    from numba.core.targetconfig import TargetConfig
-
-    if not isinstance(other, TargetConfig):
+    if not isinstance(other, _config_class):
         return NotImplemented
     if type(self) is type(other) and self._values == other._values:
         return True
@@ -87,16 +87,10 @@ def shared_block_copy(x, memo=None):
     """``copy.deepcopy`` as numba's inlining calls it: a block copied right after its
     function's IR shares the memo of that copy (so its scope is copied once for all blocks); a
     block seen twice, or anything else, is copied as before."""
-    if memo is None and type(x) is _block_type() and _block_memo is not None:
+    if memo is None and type(x) is _block_class and _block_memo is not None:
         if id(x) not in _block_memo:
             return copy.deepcopy(x, _block_memo)
     return copy.deepcopy(x, memo)
-
-
-def _block_type():
-    from numba.core import ir
-
-    return ir.Block
 
 
 def plain_text_scheme():
@@ -115,13 +109,14 @@ def plain_text_scheme():
 
 def install() -> list[str]:
     """Make the changes numba's code allows (once); returns the names of those made."""
-    global _original_copy, _made
+    global _original_copy, _made, _config_class, _block_class
     if _made is not None:
         return list(_made)
     made = _made = []
     from numba.core import inline_closurecall, ir, targetconfig
 
-    config = targetconfig.TargetConfig
+    config = _config_class = targetconfig.TargetConfig
+    _block_class = ir.Block
     if _flags_as_expected(config):
         ORIGINAL_FLAGS.update(values=config.values, hash=config.__hash__, eq=config.__eq__)
         config.values = flags_values

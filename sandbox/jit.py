@@ -214,12 +214,12 @@ if JIT_ENABLED:
     from numba.core.compiler import Compiler
     from numba.core.registry import CPUDispatcher
 
-    from sandbox.ir_only import IROnlyCompiler, install
+    from sandbox import ir_only
 
     # the versions without a Python entry make no machine code (sandbox.ir_only); numba's own
     # compiler where this numba's code library lacks what that relies on
-    IR_ONLY = install()
-    _INNER_COMPILER = IROnlyCompiler if IR_ONLY else Compiler
+    IR_ONLY = ir_only.install()
+    _INNER_COMPILER = ir_only.IROnlyCompiler if IR_ONLY else Compiler
 
     from sandbox import compile_work
 

@@ -12,6 +12,7 @@ import subprocess
 import sys
 
 import pytest
+from fresh_process import in_process
 
 from sandbox import jit
 
@@ -108,15 +109,7 @@ def test_the_blocks_of_one_copy_share_one_scope():
 def compiled(folder, before: str) -> tuple[str, str]:
     """The kernel's result and the changes made, and its LLVM IR, compiled in a new process
     from an empty cache of its own (``before``: code run before the engine is imported)."""
-    cache = folder / f"cache{len(before)}"
-    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
-    env.update(PYTHONPATH=os.pathsep.join([str(folder), *sys.path]), NUMBA_CACHE_DIR=str(cache))
-    res = subprocess.run(
-        [sys.executable, "-c", RUN.format(before=before)],
-        cwd=folder, env=env, capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
-    assert res.returncode == 0, res.stderr
-    first, text = res.stdout.split("\n")[:2]
+    first, text = in_process(folder, RUN.format(before=before), cache=f"cache{len(before)}")
     return first, re.sub(r"RecordILi\d+EE", "RecordILiNEE", text)
 
 

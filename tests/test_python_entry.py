@@ -7,11 +7,8 @@ keys of their own, so a later process never hands Python the version without an 
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-
 import pytest
+from fresh_process import in_process
 
 from sandbox import jit
 
@@ -58,20 +55,6 @@ def test_only_what_python_calls_has_a_python_entry(tmp_path, monkeypatch):
     assert k.helper(1.5) == 3.0  # called from Python after all: a version with an entry
     assert entries(k.helper) == [True] and entries(k.helper.inner) == [False]
     assert k.helper.compiled_both_ways  # what compile_profile.py reports, to be marked
-
-
-def in_process(folder, code: str) -> list[str]:
-    """The first two lines ``code`` prints, run in a new process with ``folder`` on its path
-    and its compile cache in ``folder``/cache (a crash fails the test)."""
-    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
-    env.update(PYTHONPATH=os.pathsep.join([str(folder), *sys.path]))
-    env["NUMBA_CACHE_DIR"] = str(folder / "cache")
-    res = subprocess.run(
-        [sys.executable, "-c", code],
-        cwd=folder, env=env, capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
-    assert res.returncode == 0, res.stderr
-    return res.stdout.split("\n")[:2]
 
 
 def test_a_cached_version_without_an_entry_is_never_what_python_gets(tmp_path):
