@@ -35,6 +35,16 @@ def test_the_bundled_lessons_that_need_the_soft_step():
     assert flagged == {"08", "09", "16"}  # the soft step's pile, the colouring, the soft lesson
 
 
+def test_the_bundled_lessons_that_run_uncompiled_on_a_new_machine():
+    from sandbox.course.catalogue import PLAIN_FIRST
+
+    lessons = find_lessons(ROOT / "lessons")
+    assert PLAIN_FIRST <= {lesson.stem for lesson in lessons}  # each names a lesson there is
+    plain = {lesson.stem[:2] for lesson in lessons if lesson.plain_first}
+    # not the lessons that step piles, the soft step or every broadphase: minutes uncompiled
+    assert plain.isdisjoint({"02", "05", "06", "08", "09", "16"}) and len(plain) == 12
+
+
 def test_early_worker_runs_only_lessons_without_the_soft_step_until_late(tmp_path):
     lessons = fake_lessons(tmp_path)
     started, release = [], threading.Event()

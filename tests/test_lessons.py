@@ -12,6 +12,8 @@ and a figure that breaks it fails its lesson here, with the list of problems."""
 import base64
 import os
 import re
+import subprocess
+import sys
 import tempfile
 from concurrent.futures import wait
 from pathlib import Path
@@ -173,6 +175,23 @@ def test_explorer_cell_executes_with_its_defaults(course, stem):
     pytest.importorskip("ipywidgets")
     # the live controls were built (the saved notebook keeps the figure: the widget needs a kernel)
     assert len(output.metadata[CONTROLS_KEY]) >= 2
+
+
+def test_a_lesson_run_uncompiled_writes_what_it_writes_compiled(course, tmp_path):
+    # on a new machine the lessons that take seconds uncompiled run so (sandbox.cli.lessons.
+    # plain_first): the files they write must be those they write compiled, to the byte. Lesson
+    # 13 steps contacts, joints and force fields (the kernels only such lessons need); its
+    # tables print 4 decimals, its figures and animation draw the bodies where they are
+    outputs, _ = course
+    stem = "13_user_and_agent_input"
+    env = {**os.environ, "SANDBOX_JIT": "0"}
+    cmd = [sys.executable, "-m", "sandbox", "lessons", "13", "--scripts", "--out", str(tmp_path)]
+    done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    plain = {p.name: p.read_bytes() for p in (tmp_path / stem).iterdir()}
+    compiled = {name: (outputs / stem / name).read_bytes() for name in plain}
+    assert "tables.md" in plain and any(name.endswith(".gif") for name in plain)
+    assert plain == compiled
 
 
 def test_course_book_links_and_images_resolve_offline(course):

@@ -119,8 +119,9 @@ def _compile_first(chosen: int, early: Path | None = None) -> subprocess.Popen |
     each lesson's process, the same kernels at the same time; the rest of the engine is left
     for a background warmup after the lessons (:func:`_compile_rest`). Returns the warmup's
     process (the lessons wait for it), or None.
-    A single lesson compiles what it needs itself as it runs, while the warmup compiles the
-    rest in the background at a low priority (as a small scene's first run does,
+    A single lesson (one that takes seconds uncompiled runs so instead, :func:`plain_first`)
+    compiles what it needs itself as it runs, while the warmup compiles the rest in the
+    background at a low priority (as a small scene's first run does,
     :func:`sandbox.cli.first_run.start_background_warmup`): on two cores it takes the other
     core, and compiles ahead what the lesson needs later. Either way one line says so first.
 
@@ -172,6 +173,43 @@ def _compile_first(chosen: int, early: Path | None = None) -> subprocess.Popen |
     return subprocess.Popen([sys.executable, "-m", "sandbox", "warmup", "--lessons"], env=env)
 
 
+def plain_first(chosen) -> bool:
+    """On a machine where the engine is not compiled yet (the cache is not warm), when every
+    chosen lesson takes seconds uncompiled (:attr:`sandbox.course.catalogue.Lesson.plain_first`):
+    run them uncompiled (``SANDBOX_JIT=0`` for the lessons' processes, set here), saying so in
+    one line, while ``sandbox warmup`` compiles the engine in the background for the next runs
+    (as a small scene's first run does, :func:`sandbox.cli.first_run.choose_engine_speed`).
+    Returns whether it did. ``SANDBOX_JIT`` set by the user decides alone.
+
+    Measured on the project's 2-core machine from an empty cache, one lesson: ``sandbox lessons
+    04`` took 34.9 s compiling its 168 kernels as it ran, ``12`` 35.3 s and ``19`` 40.9 s;
+    uncompiled, 3.6, 7.3 and 6.9 s (from a warm cache, compiled, 4.9, 6.7 and 4.7 s).
+    Uncompiled code costs more CPU time in some of these lessons, so among lessons that wait for
+    the compiler anyway they run compiled: lessons 12, 13 and 19 took 21 to 23 CPU-s uncompiled
+    against 13 to 16 compiled, about what compiling the kernels only they need costs."""
+    from sandbox.compile_cache import CACHE_FOLDER, is_warm
+
+    if "SANDBOX_JIT" in os.environ or not all(lesson.plain_first for lesson in chosen):
+        return False
+    if is_warm():
+        return False
+    from sandbox.cli.first_run import start_background_warmup
+
+    os.environ["SANDBOX_JIT"] = "0"  # for every process the lessons run in (and their server)
+    later = (
+        "; the engine compiles in the background for the next runs"
+        if start_background_warmup(CACHE_FOLDER)
+        else " (`sandbox warmup` compiles the engine ahead of a class)"
+    )
+    which = "these lessons run" if len(chosen) > 1 else "the lesson runs"
+    print(
+        f"the engine is not compiled for this machine yet: {which} uncompiled (plain Python), "
+        f"sooner than compiling would take{later}",
+        flush=True,
+    )
+    return True
+
+
 def _compile_rest() -> None:
     """After lessons that compiled only what they need: the rest of the engine in a
     background warmup, for the next runs (one line says so, or how to do it by hand)."""
@@ -218,7 +256,8 @@ def _run_all(chosen, outputs: Path, notebooks: bool, jobs: int) -> list:
     with ExitStack() as stack:
         tmp = stack.enter_context(tempfile.TemporaryDirectory(prefix="sandbox-kernel-"))
         early = Path(tmp) / "early-ready"
-        warmup = _compile_first(len(chosen), early if jobs > 1 else None)
+        plain = plain_first(chosen)  # then nothing is compiled first, nor in the lessons
+        warmup = None if plain else _compile_first(len(chosen), early if jobs > 1 else None)
         # kernels start with the compiled engine: at once when it is in the cache, else once
         # the warmup has compiled it (the server imports its libraries meanwhile); only for more
         # lessons than run at a time, as the server loads it before the first kernel starts

@@ -10,6 +10,30 @@ from pathlib import Path
 # what a lesson's source says when it runs the soft step's kernels (Lesson.needs_soft_kernels)
 SOFT_KERNEL_NAMES = ('"soft"', "'soft'", "solve_joints_direct", "solve_joints_soft", "colour(")
 
+# the lessons that take seconds uncompiled (plain Python, ``SANDBOX_JIT=0``) and write the same
+# files to the byte: on a machine where the engine is not compiled yet, these run uncompiled
+# rather than wait for the compiler (:func:`sandbox.cli.lessons.plain_first`). Measured on the
+# project's 2-core machine, ``sandbox lessons NN`` (a notebook), from an empty cache: 3.7 to
+# 19.0 s uncompiled against 36 to 52 s compiling what the lesson needs (1.0 to 1.7 times as long
+# as compiled from a warm cache; docs/architecture.md has the table); the other lessons take
+# 40 s to over two minutes uncompiled (the pyramids, the soft step, every broadphase)
+PLAIN_FIRST = frozenset(
+    {
+        "01_projectile",
+        "03_forces_and_inertia",
+        "04_collision_detection",
+        "07_collision_response",
+        "10_friction",
+        "11_joints",
+        "12_springs_and_buoyancy",
+        "13_user_and_agent_input",
+        "14_pymunk_side_by_side",
+        "17_simultaneous_contact_lcp",
+        "18_fixed_timestep",
+        "19_soft_bodies",
+    }
+)
+
 
 @dataclass(frozen=True)
 class Lesson:
@@ -43,6 +67,12 @@ class Lesson:
         those are compiled (:mod:`sandbox.cli.lessons`)."""
         source = self.path.read_text(encoding="utf-8")
         return any(name in source for name in SOFT_KERNEL_NAMES)
+
+    @property
+    def plain_first(self) -> bool:
+        """Whether the lesson runs uncompiled while the engine is not compiled for the machine
+        (:data:`PLAIN_FIRST`): seconds uncompiled, the same files written."""
+        return self.stem in PLAIN_FIRST
 
     def intro(self) -> tuple[str, str]:
         """``(title, opening paragraph)`` read from the first Markdown cell of the file."""
