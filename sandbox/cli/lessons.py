@@ -182,8 +182,9 @@ def plain_first(chosen) -> bool:
     Returns whether it did. ``SANDBOX_JIT`` set by the user decides alone.
 
     Measured on the project's 2-core machine from an empty cache, one lesson: ``sandbox lessons
-    04`` took 34.9 s compiling its 168 kernels as it ran, ``12`` 35.3 s and ``19`` 40.9 s;
-    uncompiled, 3.6, 7.3 and 6.9 s (from a warm cache, compiled, 4.9, 6.7 and 4.7 s).
+    04`` took 37.2 s compiling its 168 kernels as it ran, ``12`` 39.5 s and ``19`` 45.7 s;
+    uncompiled, 4.0, 8.3 and 8.0 s (compiled from a warm cache, 4.9, 6.7 and 4.7 s). All twelve
+    together: 52.2 s uncompiled, 70.6 s with the lessons' warmup first.
     Uncompiled code costs more CPU time in some of these lessons, so among lessons that wait for
     the compiler anyway they run compiled: lessons 12, 13 and 19 took 21 to 23 CPU-s uncompiled
     against 13 to 16 compiled, about what compiling the kernels only they need costs."""

@@ -14,9 +14,10 @@ SOFT_KERNEL_NAMES = ('"soft"', "'soft'", "solve_joints_direct", "solve_joints_so
 # files to the byte: on a machine where the engine is not compiled yet, these run uncompiled
 # rather than wait for the compiler (:func:`sandbox.cli.lessons.plain_first`). Measured on the
 # project's 2-core machine, ``sandbox lessons NN`` (a notebook), from an empty cache: 3.7 to
-# 19.0 s uncompiled against 36 to 52 s compiling what the lesson needs (1.0 to 1.7 times as long
-# as compiled from a warm cache; docs/architecture.md has the table); the other lessons take
-# 40 s to over two minutes uncompiled (the pyramids, the soft step, every broadphase)
+# 19.0 s uncompiled, against 36 to 52 s compiling what the lesson needs for the ten that step
+# contacts (5.8 and 8.7 s for the other two), and 0.8 to 1.7 times as long as compiled from a
+# warm cache (docs/architecture.md has the table); the other lessons take 40 s to over two
+# minutes uncompiled (the pyramids, the soft step, every broadphase)
 PLAIN_FIRST = frozenset(
     {
         "01_projectile",
