@@ -426,6 +426,20 @@ def test_lessons_as_quick_uncompiled_do_not_wait_for_the_compiler(monkeypatch, c
     )
 
 
+def test_without_a_background_warmup_the_line_says_how_to_compile(monkeypatch, capsys):
+    from sandbox.cli import lessons
+
+    monkeypatch.delenv("SANDBOX_JIT", raising=False)
+    monkeypatch.setattr(compile_cache, "is_warm", lambda: False)
+    monkeypatch.setattr(first_run, "start_background_warmup", lambda f: False)  # SANDBOX_WARMUP=off
+    assert lessons.plain_first(_lessons(4))
+    assert capsys.readouterr().out == (
+        "the engine is not compiled for this machine yet: the lesson runs uncompiled (plain "
+        "Python), sooner than compiling would take (`sandbox warmup` compiles the engine ahead "
+        "of a class)\n"
+    )
+
+
 @pytest.mark.parametrize(
     "numbers, warm, jit",
     [((12, 16), False, None), ((16,), False, None), ((12,), True, None), ((12,), False, "1")],
