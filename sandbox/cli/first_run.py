@@ -38,20 +38,28 @@ def choose_engine_speed(spec: dict, steps: int) -> None:
     """Before the engine is imported: run uncompiled if that is sooner (see the module)."""
     if "SANDBOX_JIT" in os.environ or engine_imported():
         return
-    from sandbox.compile_cache import CACHE_FOLDER, has_kernel, is_warm
+    from sandbox.compile_cache import has_kernel, is_warm
 
     if is_warm():
         return
     if len(spec["bodies"]) * steps <= PLAIN_BODY_STEPS:
-        os.environ["SANDBOX_JIT"] = "0"
-        started = start_background_warmup(CACHE_FOLDER)
-        later = "; it compiles in the background for the next runs" if started else ""
+        later = "; it compiles in the background for the next runs" if run_uncompiled() else ""
         note(f"the engine is not compiled for this machine yet: this run is plain Python{later}")
     elif not has_kernel(scene_kernel(spec)):
         note("compiling the engine for this machine, once: about a minute; later runs load it")
         from sandbox.jit import compile_noted  # imports numba: this run compiles anyway
 
         compile_noted()
+
+
+def run_uncompiled() -> bool:
+    """Run this process, and the processes it starts, uncompiled (``SANDBOX_JIT=0``, before the
+    engine is imported), while ``sandbox warmup`` compiles the engine in the background for the
+    next runs (:func:`start_background_warmup`). Returns whether that warmup runs."""
+    from sandbox.compile_cache import CACHE_FOLDER
+
+    os.environ["SANDBOX_JIT"] = "0"
+    return start_background_warmup(CACHE_FOLDER)
 
 
 def scene_kernel(spec: dict) -> str:

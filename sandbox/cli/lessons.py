@@ -188,18 +188,17 @@ def plain_first(chosen) -> bool:
     Uncompiled code costs more CPU time in some of these lessons, so among lessons that wait for
     the compiler anyway they run compiled: lessons 12, 13 and 19 took 21 to 23 CPU-s uncompiled
     against 13 to 16 compiled, about what compiling the kernels only they need costs."""
-    from sandbox.compile_cache import CACHE_FOLDER, is_warm
+    from sandbox.compile_cache import is_warm
 
     if "SANDBOX_JIT" in os.environ or not all(lesson.plain_first for lesson in chosen):
         return False
-    if is_warm():
+    if is_warm():  # read after the names: it looks for the cache's marker on disk
         return False
-    from sandbox.cli.first_run import start_background_warmup
+    from sandbox.cli.first_run import run_uncompiled
 
-    os.environ["SANDBOX_JIT"] = "0"  # for every process the lessons run in (and their server)
     later = (
         "; the engine compiles in the background for the next runs"
-        if start_background_warmup(CACHE_FOLDER)
+        if run_uncompiled()  # SANDBOX_JIT=0 for every process the lessons run in
         else " (`sandbox warmup` compiles the engine ahead of a class)"
     )
     which = "these lessons run" if len(chosen) > 1 else "the lesson runs"
