@@ -125,8 +125,8 @@ class Contact:
     ) -> None:
         self.a, self.b = a, b
         self.shape_a, self.shape_b = shape_a, shape_b
-        self.normal = Vec2(*(float(x) for x in np.asarray(normal, dtype=float)))
-        self.points = [Vec2(*(float(x) for x in np.asarray(p, dtype=float))) for p in points]
+        self.normal = Vec2(normal)  # two floats from any pair: tuple, list or array
+        self.points = [Vec2(p) for p in points]
         self.depths = [float(d) for d in depths]
         n = len(self.points)
         self.impulses = [0.0] * n if impulses is None else [float(x) for x in impulses]
@@ -136,6 +136,18 @@ class Contact:
         self.features = [0] * n if features is None else [int(f) for f in features]
         self.friction = float(friction)
         self.restitution = float(restitution)
+
+    @classmethod
+    def of_floats(cls, a, b, shape_a, shape_b, normal, points, depths, impulses, tangents,
+                  features, friction, restitution) -> Contact:  # fmt: skip
+        """As the constructor, from values that are Python floats and ints already (a record's
+        fields as ``tolist`` gives them): nothing converted, nothing checked."""
+        c = cls.__new__(cls)
+        c.a, c.b, c.shape_a, c.shape_b = a, b, shape_a, shape_b
+        c.normal, c.points = tuple.__new__(Vec2, normal), [tuple.__new__(Vec2, p) for p in points]
+        c.depths, c.impulses, c.tangent_impulses = depths, impulses, tangents
+        c.features, c.friction, c.restitution = features, friction, restitution
+        return c
 
     @property
     def depth(self) -> float:
@@ -152,6 +164,11 @@ class Contact:
         )
 
 
+def _column(values: np.ndarray) -> list:
+    """A field of the records as (nested) Python lists of floats or ints."""
+    return np.ascontiguousarray(values).tolist()
+
+
 def contacts_from_manifolds(
     manifolds: Manifolds | None, bodies: Sequence, shapes: Sequence | None = None
 ) -> list[Contact]:
@@ -162,28 +179,25 @@ def contacts_from_manifolds(
         return []
     if shapes is None and all(hasattr(body, "shapes") for body in bodies):
         shapes = [shape for body in bodies for shape in body.shapes]
+    # every field as Python lists first, one conversion per column (a contiguous copy first:
+    # numpy lists a strided nested field ten times slower): reading the records field by field
+    # took 36 to 39 us a contact, this 4 to 7 (benchmarks/bench_contacts.py)
+    r = manifolds.records
+    a, b, count, shape_a, shape_b, normal, friction, restitution = (
+        _column(r[f]) for f in ("a", "b", "count", "shape_a", "shape_b", "normal", "friction",
+                                "restitution")
+    )  # fmt: skip
+    point, depth, feature = (_column(r["points"][f]) for f in ("point", "depth", "feature"))
+    impulses, tangents = _column(manifolds.normal_impulse), _column(manifolds.tangent_impulse)
+    known = len(shapes) if shapes is not None else 0
     out = []
-    impulses, tangents = manifolds.normal_impulse, manifolds.tangent_impulse
-    for k, c in enumerate(manifolds.records):
-        n = int(c["count"])
-        sa, sb = int(c["shape_a"]), int(c["shape_b"])
-        known = shapes is not None and max(sa, sb) < len(shapes)
-        out.append(
-            Contact(
-                bodies[int(c["a"])],
-                bodies[int(c["b"])],
-                c["normal"],
-                [c["points"][j]["point"] for j in range(n)],
-                [c["points"][j]["depth"] for j in range(n)],
-                impulses=list(impulses[k, :n]),
-                shape_a=shapes[sa] if known else sa,
-                shape_b=shapes[sb] if known else sb,
-                tangent_impulses=list(tangents[k, :n]),
-                features=[c["points"][j]["feature"] for j in range(n)],
-                friction=c["friction"],
-                restitution=c["restitution"],
-            )
-        )
+    rows = zip(a, b, shape_a, shape_b, count, normal, point, depth, impulses, tangents, feature,
+               friction, restitution, strict=True)  # fmt: skip
+    for ia, ib, sa, sb, n, nk, pk, dk, ik, tk, fk, mu, e in rows:
+        if max(sa, sb) < known:  # else the shapes' indices
+            sa, sb = shapes[sa], shapes[sb]
+        points = (pk[:n], dk[:n], ik[:n], tk[:n], fk[:n])  # each point's column, count long
+        out.append(Contact.of_floats(bodies[ia], bodies[ib], sa, sb, nk, *points, mu, e))
     return out
 
 

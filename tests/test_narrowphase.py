@@ -288,6 +288,45 @@ def test_contacts_from_manifolds():
     assert contacts_from_manifolds(Manifolds.empty(), []) == []
 
 
+def test_contacts_from_manifolds_read_every_record_as_it_stands():
+    """The contacts of a settled heap of boxes and discs (one- and two-point manifolds, impulses
+    from the solver) carry each record's fields exactly, as Python floats and ints."""
+    import sandbox
+
+    world = sandbox.World(gravity=(0.0, -9.81))
+    floor = world.add_body(sandbox.Body("floor", type="static", position=(0.0, -0.5)))
+    floor.add_shape(sandbox.Box(20.0, 1.0))
+    for i in range(12):
+        body = world.add_body(
+            sandbox.Body(f"b{i}", position=(0.45 * (i % 4), 0.6 + 1.1 * (i // 4)))
+        )
+        body.add_shape(sandbox.Circle(0.4) if i % 3 == 0 else sandbox.Box(0.8, 0.8))
+    for _ in range(90):
+        world.step()
+    m = world.manifolds
+    assert len(m) >= 10 and set(m.count.tolist()) == {1, 2}
+    shapes = [shape for body in world.bodies for shape in body.shapes]
+    contacts = contacts_from_manifolds(m, world.bodies)
+    assert len(contacts) == len(m)
+    for k, c in enumerate(contacts):
+        rec, n = m.records[k], int(m.count[k])
+        assert (c.a, c.b) == (world.bodies[rec["a"]], world.bodies[rec["b"]])
+        assert (c.shape_a, c.shape_b) == (shapes[rec["shape_a"]], shapes[rec["shape_b"]])
+        assert c.normal == tuple(rec["normal"].tolist()) and type(c.normal[0]) is float
+        assert c.points == [tuple(rec["points"]["point"][j].tolist()) for j in range(n)]
+        assert c.depths == rec["points"]["depth"][:n].tolist()
+        assert c.impulses == m.normal_impulse[k, :n].tolist()
+        assert c.tangent_impulses == m.tangent_impulse[k, :n].tolist()
+        assert c.features == rec["points"]["feature"][:n].tolist()
+        assert (c.friction, c.restitution) == (rec["friction"], rec["restitution"])
+        assert all(type(x) is float for x in c.depths + c.impulses + [c.friction])
+        assert all(type(f) is int for f in c.features)
+    assert any(c.impulses[0] > 0.0 for c in contacts)
+    # shapes that do not cover the records' indices: the indices instead
+    few = contacts_from_manifolds(m, world.bodies, shapes=shapes[:1])
+    assert all(type(c.shape_a) is int and type(c.shape_b) is int for c in few)
+
+
 # --- symmetry --------------------------------------------------------------------------------
 
 coord = st.floats(-1.0, 1.0, allow_nan=False)
