@@ -174,13 +174,13 @@ class Body:
         """World position of the body origin (m)."""
         if self.world is None:
             return Vec2(*self._init["position"])
-        w, i = self.world, self.index
-        c, s = w.cs[i]
-        lc = w.local_com[i]
-        return Vec2(
-            float(w.com[i, 0] - (c * lc[0] - s * lc[1])),
-            float(w.com[i, 1] - (s * lc[0] + c * lc[1])),
+        row = self.world.state[self.index]  # three fields as Python floats: 3.7 us, not 5.8
+        (c, s), (lx, ly), (x, y) = (
+            row["cs"].tolist(),
+            row["local_com"].tolist(),
+            row["com"].tolist(),
         )
+        return tuple.__new__(Vec2, (x - (c * lx - s * ly), y - (s * lx + c * ly)))  # com - R lc
 
     @position.setter
     def position(self, value) -> None:
@@ -197,8 +197,7 @@ class Body:
     @property
     def center_of_mass(self) -> Vec2:
         """World position of the centre of mass (m)."""
-        w = self._w()
-        return Vec2(float(w.com[self.index, 0]), float(w.com[self.index, 1]))
+        return tuple.__new__(Vec2, self._w().state[self.index]["com"].tolist())
 
     @property
     def angle(self) -> float:
@@ -222,8 +221,7 @@ class Body:
         """Velocity of the centre of mass (m/s)."""
         if self.world is None:
             return Vec2(*self._init["velocity"])
-        v = self.world.vel[self.index]
-        return Vec2(float(v[0]), float(v[1]))
+        return tuple.__new__(Vec2, self.world.state[self.index]["vel"].tolist())
 
     @velocity.setter
     def velocity(self, value) -> None:

@@ -71,3 +71,21 @@ def test_bodies_return_vectors():
     # what a pymunk user writes
     moved = body.position + body.velocity * 0.5
     assert moved == pytest.approx((2.5, 2.0), abs=1e-15)
+
+
+def test_a_turned_bodys_vectors_are_its_records_read_exactly():
+    """position = com - R(angle) local_com, to the last bit, as Python floats; velocity and
+    centre of mass are the records' own values."""
+    world = sandbox.World(gravity=(0.0, -9.81))
+    body = world.add_body(sandbox.Body("b", position=(1.0, 2.0), angle=0.7, velocity=(3.0, 1.0)))
+    body.add_shape(sandbox.Box(2.0, 1.0, offset=(0.3, -0.2)))
+    for _ in range(5):
+        world.step()
+    row = world.state[body.index]
+    (c, s), lc, com = row["cs"], row["local_com"], row["com"]
+    origin = com - np.array([c * lc[0] - s * lc[1], s * lc[0] + c * lc[1]])
+    assert tuple(body.position) == tuple(origin.tolist()) and body.position != (1.0, 2.0)
+    assert tuple(body.velocity) == tuple(row["vel"].tolist())
+    assert tuple(body.center_of_mass) == tuple(com.tolist())
+    values = (*body.position, *body.velocity, *body.center_of_mass)
+    assert all(type(x) is float for x in values)
