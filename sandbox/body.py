@@ -180,7 +180,7 @@ class Body:
             row["local_com"].tolist(),
             row["com"].tolist(),
         )
-        return tuple.__new__(Vec2, (x - (c * lx - s * ly), y - (s * lx + c * ly)))  # com - R lc
+        return Vec2.of_floats((x - (c * lx - s * ly), y - (s * lx + c * ly)))  # com - R lc
 
     @position.setter
     def position(self, value) -> None:
@@ -197,7 +197,7 @@ class Body:
     @property
     def center_of_mass(self) -> Vec2:
         """World position of the centre of mass (m)."""
-        return tuple.__new__(Vec2, self._w().state[self.index]["com"].tolist())
+        return Vec2.of_floats(self._w().state[self.index]["com"].tolist())
 
     @property
     def angle(self) -> float:
@@ -221,7 +221,7 @@ class Body:
         """Velocity of the centre of mass (m/s)."""
         if self.world is None:
             return Vec2(*self._init["velocity"])
-        return tuple.__new__(Vec2, self.world.state[self.index]["vel"].tolist())
+        return Vec2.of_floats(self.world.state[self.index]["vel"].tolist())
 
     @velocity.setter
     def velocity(self, value) -> None:

@@ -144,7 +144,7 @@ class Contact:
         fields as ``tolist`` gives them): nothing converted, nothing checked."""
         c = cls.__new__(cls)
         c.a, c.b, c.shape_a, c.shape_b = a, b, shape_a, shape_b
-        c.normal, c.points = tuple.__new__(Vec2, normal), [tuple.__new__(Vec2, p) for p in points]
+        c.normal, c.points = Vec2.of_floats(normal), [Vec2.of_floats(p) for p in points]
         c.depths, c.impulses, c.tangent_impulses = depths, impulses, tangents
         c.features, c.friction, c.restitution = features, friction, restitution
         return c

@@ -42,6 +42,12 @@ class Vec2(tuple):
             x, y = x  # Vec2((1, 2)) and Vec2(array) as well as Vec2(1, 2)
         return tuple.__new__(cls, (float(x), float(0.0 if y is None else y)))
 
+    @classmethod
+    def of_floats(cls, xy: Iterable[float]) -> Vec2:
+        """A vector of two Python floats as they are (``array.tolist()`` gives them), nothing
+        converted or checked: for code that reads many vectors from the engine's records."""
+        return tuple.__new__(cls, xy)
+
     # --- components ---------------------------------------------------------------------------
     @property
     def x(self) -> float:
