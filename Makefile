@@ -8,7 +8,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 DEV_STAMP := $(VENV)/.installed-dev
 
-.PHONY: lessons notebook test test-suite test-bounds lint format docs bench clean
+.PHONY: lessons notebook test test-suite test-bounds lint format docs bench wheel clean
 
 # the project with what the tests and `make lessons` need (the `test` extra)
 $(STAMP): pyproject.toml setup.py
@@ -70,6 +70,12 @@ docs: $(DEV_STAMP)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --site-dir site
 
 # the benchmarks against pymunk and Box2D 2.3 (the `bench` extra adds the box2d package)
+# a wheel for a class (dist/): the engine compiled ahead inside it for x86-64 processors with
+# AVX2 (sandbox/prebuilt.py, one to two minutes), so that a student's first run loads it
+wheel: $(DEV_STAMP)
+	$(BIN)/python -m sandbox.prebuilt
+	$(BIN)/python -m build --wheel --outdir dist
+
 bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/run.py
 
@@ -78,4 +84,4 @@ $(VENV)/.installed-bench: $(STAMP)
 	touch $(VENV)/.installed-bench
 
 clean:
-	rm -rf $(VENV) outputs/*/ outputs/index.html .pytest_cache site build
+	rm -rf $(VENV) outputs/*/ outputs/index.html .pytest_cache site build dist sandbox/prebuilt_kernels

@@ -124,8 +124,8 @@ def _fallback_note(tried: list[str], folder: Path) -> str:
 
 def _tidy(base: Path, keep: str) -> None:
     """Drop stale cache folders of earlier kernel sources."""
-    for old in base.glob("numba-*"):
-        if old.name != keep:
+    for old in base.glob("numba-*"):  # numba-<hash>, and -<target> for the shipped kernels
+        if old.name != keep and not old.name.startswith(keep + "-"):
             shutil.rmtree(old, ignore_errors=True)
 
 
@@ -137,6 +137,26 @@ def take_cache_note() -> str | None:
 
 
 CACHE_FOLDER, _note = choose_cache_folder(kernel_sources_hash())
+PREBUILT = False  # whether CACHE_FOLDER holds the kernels shipped in the package instead
+
+
+def _choose_shipped() -> None:
+    """Use the kernels shipped in the package (:mod:`sandbox.prebuilt`) where the cache for
+    this very processor is not warm and they run here; where it is warm, that cache."""
+    global CACHE_FOLDER, PREBUILT
+    from sandbox import prebuilt
+
+    if CACHE_FOLDER is None:
+        return
+    if (CACHE_FOLDER / WARM_FILE).exists():
+        prebuilt.leave()  # started by a process that used them: this one has its own
+        return
+    shipped = prebuilt.use(CACHE_FOLDER, CACHE_FOLDER.name.removeprefix("numba-"))
+    if shipped is not None:
+        CACHE_FOLDER, PREBUILT = shipped, True
+
+
+_choose_shipped()
 
 
 def is_warm() -> bool:

@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 
-from sandbox.compile_cache import CACHE_FOLDER, COMPILE_LOG, take_cache_note
+from sandbox.compile_cache import CACHE_FOLDER, COMPILE_LOG, PREBUILT, take_cache_note
 
 JIT_ENABLED: bool = os.environ.get("SANDBOX_JIT", "1") != "0"
 # flags for a compiled call to pass as constants. numba compiles a function once for each
@@ -49,12 +49,17 @@ if JIT_ENABLED:
 
     from sandbox.vector_width import target_features
 
-    try:  # before anything compiles: the vectors' width (sandbox.vector_width)
-        _features = target_features(llvm.get_host_cpu_features().flatten(), os.environ)
-    except RuntimeError:  # LLVM cannot tell this processor's features: numba's default
-        _features = None
-    if _features is not None:
-        numba.config.CPU_FEATURES = _features
+    if PREBUILT:  # the kernels shipped in the package: their target (sandbox.prebuilt)
+        from sandbox.prebuilt import TARGET
+
+        numba.config.CPU_NAME, numba.config.CPU_FEATURES = TARGET, ""
+    else:
+        try:  # before anything compiles: the vectors' width (sandbox.vector_width)
+            _features = target_features(llvm.get_host_cpu_features().flatten(), os.environ)
+        except RuntimeError:  # LLVM cannot tell this processor's features: numba's default
+            _features = None
+        if _features is not None:
+            numba.config.CPU_FEATURES = _features
 
     from sandbox.heap import keep_heap
 

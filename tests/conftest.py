@@ -13,3 +13,6 @@ os.environ.setdefault("SANDBOX_WARMUP", "off")
 # ... and runs compiled, as the tests in this process do, whether or not the compile cache was
 # marked warm (tests/test_first_run.py takes this away to test the first run)
 os.environ.setdefault("SANDBOX_JIT", "1")
+# ... and compiles for this very processor, whether or not kernels were compiled ahead to ship
+# in the package (`make wheel`; tests/test_prebuilt.py takes this away)
+os.environ.setdefault("SANDBOX_PREBUILT", "off")

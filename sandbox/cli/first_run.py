@@ -93,7 +93,10 @@ def start_background_warmup(folder) -> bool:
         lock.write_text(str(os.getpid()))
     except OSError:
         return False
-    env = {**os.environ, "SANDBOX_JIT": "1"}
+    from sandbox.prebuilt import SWITCH, leave
+
+    env = {**os.environ, "SANDBOX_JIT": "1", SWITCH: "off"}  # for this very processor
+    leave(env)
     try:
         warmup = subprocess.Popen(
             [sys.executable, "-m", "sandbox", "warmup", "--quiet"],
