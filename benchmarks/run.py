@@ -46,7 +46,11 @@ import traceback
 from dataclasses import dataclass
 from pathlib import Path
 
-import pymunk
+# the engine compiled for this very processor, not kernels compiled ahead to ship in a wheel
+# (sandbox/prebuilt.py), which a checkout holds after `make wheel` until `sandbox warmup`
+os.environ.setdefault("SANDBOX_PREBUILT", "off")
+
+import pymunk  # noqa: E402
 from engines import (  # benchmarks/engines.py
     ALL_NAMES,
     BOX2D_MISSING,
