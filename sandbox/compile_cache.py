@@ -138,6 +138,7 @@ def take_cache_note() -> str | None:
 
 CACHE_FOLDER, _note = choose_cache_folder(kernel_sources_hash())
 PREBUILT = False  # whether CACHE_FOLDER holds the kernels shipped in the package instead
+_OWN = CACHE_FOLDER  # the cache folder for this very processor
 
 
 def _choose_shipped() -> None:
@@ -157,6 +158,18 @@ def _choose_shipped() -> None:
 
 
 _choose_shipped()
+
+
+def own_processor() -> None:
+    """Compile for this very processor from here on, into its own cache, not the shipped
+    kernels' (``sandbox warmup``, before the engine is imported), and so do the processes this
+    one starts."""
+    global CACHE_FOLDER, PREBUILT
+    from sandbox import prebuilt
+
+    os.environ[prebuilt.SWITCH] = "off"
+    prebuilt.leave()
+    CACHE_FOLDER, PREBUILT = _OWN, False
 
 
 def is_warm() -> bool:

@@ -173,3 +173,41 @@ def test_a_wheel_carries_the_shipped_kernels_when_they_were_built(tmp_path):
     assert kernels + prebuilt.MANIFEST in names
     assert kernels + "kernels/sandbox.solvers/soft.solve-1.py311.nbi" in names
     assert kernels + "kernels/sandbox/step.x.nbc" in names
+
+
+WARMUP = """
+import os, sys, types
+from pathlib import Path
+from sandbox import prebuilt
+prebuilt.FOLDER = Path(sys.argv[1])
+def warm_up(report, jobs, lessons):  # what the warmup would compile into, and for which target
+    from sandbox.compile_cache import CACHE_FOLDER
+    import numba
+    print(CACHE_FOLDER.name, os.environ.get("NUMBA_CPU_NAME"), numba.config.CPU_NAME)
+    return 0.0
+fake = types.ModuleType("sandbox.warmup")  # the warmup, without importing the engine first
+fake.warm_up, fake.warm_part, fake.where = warm_up, None, None
+sys.modules["sandbox.warmup"] = fake
+from sandbox.cli import main
+main(["warmup", "--quiet"])
+"""
+
+
+def test_sandbox_warmup_compiles_for_the_processor_itself(tmp_path, environ):
+    if not prebuilt.runs_target():
+        pytest.skip("this processor does not run x86-64-v3 code")
+    shipped(tmp_path / "kernels")
+    env = {**environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    # a first run took the shipped kernels and set numba's target for what it starts
+    env.update({"NUMBA_CPU_NAME": prebuilt.TARGET, "NUMBA_CPU_FEATURES": "", prebuilt.IN_USE: "1"})
+    out = subprocess.run(
+        [sys.executable, "-c", WARMUP, str(tmp_path / "kernels")],
+        env=env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    folder, variable, target = out.stdout.split()
+    assert folder == f"numba-{kernel_sources_hash()}"  # not ...-x86-64-v3
+    assert (variable, target) == ("None", "None")  # numba's own choice: this processor

@@ -57,13 +57,11 @@ def run(args: argparse.Namespace) -> int:
     """Compile every kernel, saying what is ready: on a terminal one progress bar over the
     families, else one line per family (and never the compile notice of a first run: this
     says what it compiles itself)."""
-    import os
     import sys
 
-    from sandbox.prebuilt import SWITCH, leave
+    from sandbox.compile_cache import own_processor
 
-    os.environ[SWITCH] = "off"  # for this very processor, not the kernels shipped in the package
-    leave()
+    own_processor()  # for this very processor, not the kernels shipped in the package
     from sandbox.jit import compiling_process, quiet_compiles
     from sandbox.warmup import warm_part, warm_up, where
 
