@@ -84,4 +84,4 @@ $(VENV)/.installed-bench: $(STAMP)
 	touch $(VENV)/.installed-bench
 
 clean:
-	rm -rf $(VENV) outputs/*/ outputs/index.html .pytest_cache site build dist sandbox/prebuilt_kernels
+	rm -rf $(VENV) outputs/*/ outputs/index.html .pytest_cache site build dist sandbox/prebuilt_kernels.zip

@@ -19,7 +19,9 @@ the cache went (temporary folder, or none) is printed by the command line after 
 been validated (:func:`take_cache_note`).
 
 ``sandbox warmup`` compiles every kernel and then leaves a file ``warm`` in the folder
-(:func:`mark_warm`, :func:`is_warm`).
+(:func:`mark_warm`, :func:`is_warm`). Until it has, the kernels compiled ahead and shipped in the
+package, where there are any that run here (:mod:`sandbox.prebuilt`), are used instead, from a
+folder of their own beside it (``numba-<hash>-x86-64-v3``, marked warm).
 """
 
 from __future__ import annotations
@@ -136,7 +138,8 @@ def take_cache_note() -> str | None:
     return text
 
 
-CACHE_FOLDER, _note = choose_cache_folder(kernel_sources_hash())
+_KEY = kernel_sources_hash()
+CACHE_FOLDER, _note = choose_cache_folder(_KEY)
 PREBUILT = False  # whether CACHE_FOLDER holds the kernels shipped in the package instead
 _OWN = CACHE_FOLDER  # the cache folder for this very processor
 
@@ -152,7 +155,7 @@ def _choose_shipped() -> None:
     if (CACHE_FOLDER / WARM_FILE).exists():
         prebuilt.leave()  # started by a process that used them: this one has its own
         return
-    shipped = prebuilt.use(CACHE_FOLDER, CACHE_FOLDER.name.removeprefix("numba-"))
+    shipped = prebuilt.use(CACHE_FOLDER, _KEY)
     if shipped is not None:
         CACHE_FOLDER, PREBUILT = shipped, True
 

@@ -5,7 +5,7 @@ of 80 to 120 s on the project's 2-core machine). numba caches machine code for t
 it runs on, but it can also compile for a named processor family. Code for ``x86-64-v3`` (the
 instructions of x86-64 processors since about 2015: AVX2, FMA, BMI) runs on every such
 processor, so it can be compiled once, when the package is built, and shipped in it
-(``python -m sandbox.prebuilt`` writes it into :data:`FOLDER`, which the wheel then carries).
+(``python -m sandbox.prebuilt`` writes it into :data:`ARCHIVE`, which the wheel then carries).
 Measured on the project's machine (AVX-512): the lessons' outputs were the same to the byte as
 with code for the machine itself (their timing tables aside: no instruction changes what it
 computes, only how many numbers it works on at once), and the step benchmarks 0 to 25 % slower
@@ -38,6 +38,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import zipfile
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
@@ -48,9 +49,11 @@ TARGET_FLAGS = frozenset(
 )
 # as Python imported it, links not followed: numba names its folders after this path
 PACKAGE = Path(os.path.abspath(__file__)).parent
-FOLDER = PACKAGE / "prebuilt_kernels"  # the shipped kernels: KERNELS and MANIFEST
-KERNELS = "kernels"  # below FOLDER: the cache's files, in the package's folders
-MANIFEST = "manifest.json"  # below FOLDER: what they were compiled with (this_build())
+# the shipped kernels, one file (a folder of data in the package would look like a package of
+# Python to the wheel's builder): KERNELS and MANIFEST
+ARCHIVE = PACKAGE / "prebuilt_kernels.zip"
+KERNELS = "kernels"  # in ARCHIVE: the cache's files, in the package's folders (shipped_name)
+MANIFEST = "manifest.json"  # in ARCHIVE: what they were compiled with (this_build())
 SWITCH = "SANDBOX_PREBUILT"  # "off": never use the shipped kernels
 IN_USE = "SANDBOX_PREBUILT_IN_USE"  # set for the processes a process using them starts
 WARM_FILE = "warm"  # as sandbox.compile_cache.WARM_FILE: every kernel is in the folder
@@ -87,13 +90,13 @@ def runs_target(cpuinfo: str | None = None) -> bool:
     return False
 
 
-def matches(kernels: str, folder: Path | None = None) -> bool:
-    """Whether ``folder`` (default :data:`FOLDER`) holds shipped kernels that run here (see the
-    module)."""
-    folder = FOLDER if folder is None else folder
+def matches(kernels: str, archive: Path | None = None) -> bool:
+    """Whether ``archive`` (default :data:`ARCHIVE`) holds shipped kernels that run here (see
+    the module)."""
     try:
-        shipped = json.loads((folder / MANIFEST).read_text())
-    except (OSError, ValueError):
+        with zipfile.ZipFile(ARCHIVE if archive is None else archive) as shipped_kernels:
+            shipped = json.loads(shipped_kernels.read(MANIFEST))
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile):
         return False
     return shipped == this_build(kernels) and runs_target()
 
@@ -125,25 +128,30 @@ def package_folder(name: str, package: Path = PACKAGE) -> Path:
     return package.joinpath(*name.split(".")[1:])
 
 
-def install(dest: Path, source: Path | None = None, package: Path = PACKAGE) -> bool:
-    """Copy the shipped kernels in ``source`` (default :data:`FOLDER`) into the cache folder
-    ``dest`` under numba's names for ``package``'s folders, once (a folder already marked warm
-    is kept), whole or not at all (copied beside it, then renamed). Returns whether ``dest``
-    holds them."""
-    source = FOLDER if source is None else source
+def install(dest: Path, archive: Path | None = None, package: Path = PACKAGE) -> bool:
+    """Unpack the shipped kernels in ``archive`` (default :data:`ARCHIVE`) into the cache
+    folder ``dest`` under numba's names for ``package``'s folders, once (a folder already marked
+    warm is kept), whole or not at all (unpacked beside it, then renamed). Returns whether
+    ``dest`` holds them."""
     if (dest / WARM_FILE).exists():
         return True
     work = None
     try:
         dest.parent.mkdir(parents=True, exist_ok=True)
         work = Path(tempfile.mkdtemp(prefix=dest.name + ".", dir=dest.parent))
-        for inside in sorted((source / KERNELS).iterdir()):
-            shutil.copytree(inside, work / numba_folder_name(package_folder(inside.name, package)))
+        with zipfile.ZipFile(ARCHIVE if archive is None else archive) as shipped_kernels:
+            for member in shipped_kernels.infolist():
+                top, name, file = (member.filename.split("/") + ["", ""])[:3]
+                if top != KERNELS or not name.startswith("sandbox") or not file:
+                    continue  # the manifest, or nothing of ours
+                folder = work / numba_folder_name(package_folder(name, package))
+                folder.mkdir(exist_ok=True)
+                (folder / Path(file).name).write_bytes(shipped_kernels.read(member))
         (work / WARM_FILE).write_text(f"kernels compiled for {TARGET}, shipped in the package\n")
         if not (dest / WARM_FILE).exists():  # a partial copy (never one another process made)
             shutil.rmtree(dest, ignore_errors=True)
         os.replace(work, dest)
-    except OSError:  # not writable, or another process put its copy there first
+    except (OSError, KeyError, zipfile.BadZipFile):  # not writable, or another process's first
         if work is not None:
             shutil.rmtree(work, ignore_errors=True)
         return (dest / WARM_FILE).exists()
@@ -180,7 +188,7 @@ def leave(environ: dict | None = None) -> None:
 
 def build(dest: Path | None = None) -> None:
     """Compile every kernel for :data:`TARGET` (``sandbox warmup`` in a process of its own, an
-    empty cache) and write them into ``dest`` (default :data:`FOLDER`) with their
+    empty cache) and write them into the archive ``dest`` (default :data:`ARCHIVE`) with their
     :data:`MANIFEST`, replacing what was there."""
     from sandbox.compile_cache import kernel_sources_hash
 
@@ -192,7 +200,7 @@ def build(dest: Path | None = None) -> None:
         compiled = Path(cache) / f"numba-{key}"
         if not (compiled / WARM_FILE).exists():
             raise RuntimeError(f"the warmup left no warm cache in {compiled}")
-        ship(compiled, FOLDER if dest is None else dest, key)
+        ship(compiled, ARCHIVE if dest is None else dest, key)
 
 
 def target_environment(cache: str) -> dict[str, str]:
@@ -206,16 +214,19 @@ def target_environment(cache: str) -> dict[str, str]:
 
 def ship(compiled: Path, dest: Path, key: str) -> None:
     """Write the cache folder ``compiled`` (kernels compiled for :data:`TARGET`, sources of hash
-    ``key``) into ``dest`` as shipped kernels: the package's folders by their place in it
-    (:func:`shipped_name`), and the :data:`MANIFEST`."""
+    ``key``) into the archive ``dest`` as shipped kernels: the package's folders by their place
+    in it (:func:`shipped_name`), and the :data:`MANIFEST`."""
     places = package_folders()
-    shutil.rmtree(dest, ignore_errors=True)
-    for folder in sorted(p for p in compiled.iterdir() if p.is_dir()):
-        shutil.copytree(folder, dest / KERNELS / places[folder.name])
-    (dest / MANIFEST).write_text(json.dumps(this_build(key), indent=1) + "\n")
+    work = dest.with_name(dest.name + ".part")
+    with zipfile.ZipFile(work, "w", zipfile.ZIP_DEFLATED) as shipped_kernels:
+        shipped_kernels.writestr(MANIFEST, json.dumps(this_build(key), indent=1) + "\n")
+        for folder in sorted(p for p in compiled.iterdir() if p.is_dir()):
+            for file in sorted(folder.iterdir()):
+                shipped_kernels.write(file, f"{KERNELS}/{places[folder.name]}/{file.name}")
+    os.replace(work, dest)
 
 
 if __name__ == "__main__":
-    _dest = Path(sys.argv[1]) if len(sys.argv) > 1 else FOLDER
+    _dest = Path(sys.argv[1]) if len(sys.argv) > 1 else ARCHIVE
     build(_dest)
     print(f"every kernel compiled for {TARGET} into {_dest}")

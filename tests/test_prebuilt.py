@@ -4,9 +4,9 @@ compiles nothing and steps as the machine's own code does; a wheel carries them.
 
 from __future__ import annotations
 
+import io
 import json
 import os
-import shutil
 import subprocess
 import sys
 import zipfile
@@ -47,29 +47,35 @@ def test_folder_names_are_numbas_for_every_folder_of_the_package():
     assert names[prebuilt.numba_folder_name(prebuilt.PACKAGE / "solvers")] == "sandbox.solvers"
 
 
-def shipped(folder: Path, **changes: str) -> Path:
-    """A folder of shipped kernels (two fake files) whose manifest is this machine's, changed."""
-    for name, file in (("sandbox.solvers", "soft.solve-1.py311.nbi"), ("sandbox", "step.x.nbc")):
-        (folder / prebuilt.KERNELS / name).mkdir(parents=True)
-        (folder / prebuilt.KERNELS / name / file).write_text(name)
+def shipped(archive: Path, **changes: str) -> Path:
+    """An archive of shipped kernels (two fake files) whose manifest is this machine's, changed."""
     manifest = {**prebuilt.this_build(kernel_sources_hash()), **changes}
-    (folder / prebuilt.MANIFEST).write_text(json.dumps(manifest))
-    return folder
+    archive.parent.mkdir(parents=True, exist_ok=True)
+    with zipfile.ZipFile(archive, "w") as shipped_kernels:
+        shipped_kernels.writestr(prebuilt.MANIFEST, json.dumps(manifest))
+        for name, file in (
+            ("sandbox.solvers", "soft.solve-1.py311.nbi"),
+            ("sandbox", "step.x.nbc"),
+        ):
+            shipped_kernels.writestr(f"{prebuilt.KERNELS}/{name}/{file}", name)
+    return archive
 
 
 @pytest.mark.parametrize(
     "changes", [{}, {"numba": "0.1.0"}, {"python": "cpython-27"}, {"kernels": "0" * 16}]
 )
 def test_shipped_kernels_match_only_the_build_they_were_made_for(tmp_path, changes):
-    folder = shipped(tmp_path / "kernels", **changes)
-    assert prebuilt.matches(kernel_sources_hash(), folder) == (
+    archive = shipped(tmp_path / "kernels.zip", **changes)
+    assert prebuilt.matches(kernel_sources_hash(), archive) == (
         not changes and prebuilt.runs_target()
     )
-    assert not prebuilt.matches(kernel_sources_hash(), tmp_path / "nothing")
+    assert not prebuilt.matches(kernel_sources_hash(), tmp_path / "nothing.zip")
+    (tmp_path / "broken.zip").write_text("not an archive")
+    assert not prebuilt.matches(kernel_sources_hash(), tmp_path / "broken.zip")
 
 
 def test_install_copies_under_numbas_names_once(tmp_path):
-    source = shipped(tmp_path / "kernels")
+    source = shipped(tmp_path / "kernels.zip")
     dest = tmp_path / "cache" / "numba-x-x86-64-v3"
     assert prebuilt.install(dest, source)
     solvers = dest / prebuilt.numba_folder_name(prebuilt.PACKAGE / "solvers")
@@ -81,7 +87,7 @@ def test_install_copies_under_numbas_names_once(tmp_path):
     assert prebuilt.install(dest, source)  # installed: left as it is
     assert (solvers / "soft.solve-1.py311.nbi").read_text() == "numba's own since"
     assert sorted(p.name for p in dest.parent.iterdir()) == [dest.name]  # no copy left over
-    assert not prebuilt.install(tmp_path / "other", tmp_path / "missing")
+    assert not prebuilt.install(tmp_path / "other", tmp_path / "missing.zip")
     assert not (tmp_path / "other").exists()
 
 
@@ -96,7 +102,7 @@ def environ(monkeypatch):
 def test_use_points_numba_at_them_and_leave_takes_it_back(tmp_path, monkeypatch, environ):
     if not prebuilt.runs_target():
         pytest.skip("this processor does not run x86-64-v3 code")
-    monkeypatch.setattr(prebuilt, "FOLDER", shipped(tmp_path / "kernels"))
+    monkeypatch.setattr(prebuilt, "ARCHIVE", shipped(tmp_path / "kernels.zip"))
     native = tmp_path / "cache" / "numba-abc"
     folder = prebuilt.use(native, kernel_sources_hash())
     assert folder == tmp_path / "cache" / "numba-abc-x86-64-v3"
@@ -119,7 +125,7 @@ import json, sys
 from pathlib import Path
 from sandbox import prebuilt
 if len(sys.argv) > 1:
-    prebuilt.FOLDER = Path(sys.argv[1])
+    prebuilt.ARCHIVE = Path(sys.argv[1])
 from sandbox import Body, Circle, World
 from sandbox.compile_cache import PREBUILT
 w = World(integrator="semi_implicit_euler")
@@ -139,13 +145,13 @@ def test_a_run_that_loads_them_compiles_nothing_and_steps_the_same(tmp_path, env
     built = prebuilt.target_environment(str(tmp_path / "built"))
     run = [sys.executable, "-c", STEP]
     subprocess.run(run, env=built, cwd=tmp_path, check=True, capture_output=True)
-    prebuilt.ship(tmp_path / "built" / f"numba-{key}", tmp_path / "shipped", key)
-    assert prebuilt.matches(key, tmp_path / "shipped")
+    prebuilt.ship(tmp_path / "built" / f"numba-{key}", tmp_path / "shipped.zip", key)
+    assert prebuilt.matches(key, tmp_path / "shipped.zip")
     # a machine with an empty cache: loads them
     log = tmp_path / "compiled.log"
     env = {**environ, "NUMBA_CACHE_DIR": str(tmp_path / "empty"), "SANDBOX_COMPILE_LOG": str(log)}
     env.pop("SANDBOX_JIT", None)
-    out = subprocess.run([*run, str(tmp_path / "shipped")], env=env, cwd=tmp_path, check=True,
+    out = subprocess.run([*run, str(tmp_path / "shipped.zip")], env=env, cwd=tmp_path, check=True,
                          capture_output=True, text=True)  # fmt: skip
     loaded = json.loads(out.stdout.splitlines()[-1])
     assert loaded[0] is True
@@ -159,27 +165,25 @@ def test_a_run_that_loads_them_compiles_nothing_and_steps_the_same(tmp_path, env
 
 def test_a_wheel_carries_the_shipped_kernels_when_they_were_built(tmp_path):
     source = clean_copy(tmp_path / "src")
-    shutil.rmtree(source / "sandbox" / "prebuilt_kernels", ignore_errors=True)  # a checkout's
-    shipped(source / "sandbox" / "prebuilt_kernels")
+    shipped(source / "sandbox" / "prebuilt_kernels.zip")
     res = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", str(source), "--no-deps", "-w", str(tmp_path)],
+        [sys.executable, "-m", "pip", "wheel", str(source), "--no-deps", "-v", "-w", str(tmp_path)],
         capture_output=True,
         text=True,
     )
     assert res.returncode == 0, res.stderr[-2000:]
+    assert "Warning" not in res.stdout + res.stderr  # nothing looks like a package left out
     (wheel,) = tmp_path.glob("physics_sandbox-*.whl")
-    names = set(zipfile.ZipFile(wheel).namelist())
-    kernels = "sandbox/prebuilt_kernels/"
-    assert kernels + prebuilt.MANIFEST in names
-    assert kernels + "kernels/sandbox.solvers/soft.solve-1.py311.nbi" in names
-    assert kernels + "kernels/sandbox/step.x.nbc" in names
+    with zipfile.ZipFile(wheel) as built:
+        inside = zipfile.ZipFile(io.BytesIO(built.read("sandbox/prebuilt_kernels.zip")))
+    assert f"{prebuilt.KERNELS}/sandbox.solvers/soft.solve-1.py311.nbi" in inside.namelist()
 
 
 WARMUP = """
 import os, sys, types
 from pathlib import Path
 from sandbox import prebuilt
-prebuilt.FOLDER = Path(sys.argv[1])
+prebuilt.ARCHIVE = Path(sys.argv[1])
 def warm_up(report, jobs, lessons):  # what the warmup would compile into, and for which target
     from sandbox.compile_cache import CACHE_FOLDER
     import numba
@@ -196,12 +200,12 @@ main(["warmup", "--quiet"])
 def test_sandbox_warmup_compiles_for_the_processor_itself(tmp_path, environ):
     if not prebuilt.runs_target():
         pytest.skip("this processor does not run x86-64-v3 code")
-    shipped(tmp_path / "kernels")
+    shipped(tmp_path / "kernels.zip")
     env = {**environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
     # a first run took the shipped kernels and set numba's target for what it starts
     env.update({"NUMBA_CPU_NAME": prebuilt.TARGET, "NUMBA_CPU_FEATURES": "", prebuilt.IN_USE: "1"})
     out = subprocess.run(
-        [sys.executable, "-c", WARMUP, str(tmp_path / "kernels")],
+        [sys.executable, "-c", WARMUP, str(tmp_path / "kernels.zip")],
         env=env,
         cwd=tmp_path,
         capture_output=True,
