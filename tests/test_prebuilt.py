@@ -93,9 +93,12 @@ def test_install_copies_under_numbas_names_once(tmp_path):
 
 @pytest.fixture
 def environ(monkeypatch):
-    """The variables the shipped kernels set, unset (restored after the test)."""
+    """The variables the shipped kernels set, unset, and after the test as they were (set first:
+    monkeypatch restores only what it changed, and a variable the test sets would else stay set
+    for every later test and the processes they start)."""
     for name in ("NUMBA_CPU_NAME", "NUMBA_CPU_FEATURES", prebuilt.IN_USE, prebuilt.SWITCH):
-        monkeypatch.delenv(name, raising=False)
+        monkeypatch.setenv(name, "")
+        monkeypatch.delenv(name)
     return os.environ
 
 
