@@ -279,6 +279,32 @@ def bench_lessons(cold: bool = False) -> list[dict]:
     return rows
 
 
+def bench_lessons_shipped() -> list[dict]:
+    """Wall time of ``sandbox lessons`` from an empty compile cache with the kernels compiled
+    ahead in the package (``make wheel``, ``sandbox/prebuilt.py``), as a class's first run from
+    that wheel; no row unless the checkout holds them and they run here."""
+    from sandbox import prebuilt
+    from sandbox.compile_cache import kernel_sources_hash
+
+    if not prebuilt.matches(kernel_sources_hash()):
+        return []
+    with tempfile.TemporaryDirectory() as cache:
+        env = {**os.environ, prebuilt.SWITCH: "on", "NUMBA_CACHE_DIR": cache}
+        env["SANDBOX_WARMUP"] = "off"  # as bench_lessons(cold=True)
+        start = time.perf_counter()
+        proc = subprocess.run(
+            [sys.executable, "-m", "sandbox", "lessons"],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            env=env,
+        )
+        total = time.perf_counter() - start
+    status = "ok" if proc.returncode == 0 else f"error: exit {proc.returncode}"
+    name = "lessons_total_cold_cache_shipped_kernels"
+    return [row(name, value=f"{total:.1f}", unit="s", status=status)]
+
+
 # ---------------------------------------------------------------- output
 
 
@@ -407,7 +433,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--cold-lessons",
         action="store_true",
-        help="also time all lessons from an empty compile cache (about three minutes more)",
+        help="also time all lessons from an empty compile cache (about three minutes more), "
+        "and again with the kernels compiled ahead when the checkout holds them (make wheel)",
     )
     args = parser.parse_args(argv)
 
@@ -439,6 +466,7 @@ def main(argv: list[str] | None = None) -> int:
             rows.extend(bench_lessons())
         if args.cold_lessons:
             rows.extend(bench_lessons(cold=True))
+            rows.extend(bench_lessons_shipped())
 
     mode = f"{'quick' if args.quick else 'full'} run{' (--only)' if partial else ''}"
     title = make_title(mode, args.clock)
