@@ -69,13 +69,13 @@ format: $(DEV_STAMP)
 docs: $(DEV_STAMP)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --site-dir site
 
-# the benchmarks against pymunk and Box2D 2.3 (the `bench` extra adds the box2d package)
 # a wheel for a class (dist/): the engine compiled ahead inside it for x86-64 processors with
 # AVX2 (sandbox/prebuilt.py, one to two minutes), so that a student's first run loads it
 wheel: $(DEV_STAMP)
 	$(BIN)/python -m sandbox.prebuilt
 	$(BIN)/python -m build --wheel --outdir dist
 
+# the benchmarks against pymunk and Box2D 2.3 (the `bench` extra adds the box2d package)
 bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/run.py
 

@@ -8,12 +8,12 @@ processor, so it can be compiled once, when the package is built, and shipped in
 (``python -m sandbox.prebuilt`` writes it into :data:`ARCHIVE`, which the wheel then carries).
 Measured on the project's machine (AVX-512): the lessons' outputs were the same to the byte as
 with code for the machine itself (their timing tables aside: no instruction changes what it
-computes, only how many numbers it works on at once), and the step benchmarks 0 to 25 % slower
+computes, only how many numbers it works on at once), and the step benchmarks 4 to 19 % slower
 (the wide sweeps do four contacts at once instead of eight).
 
 On a machine where :func:`matches` (the same numba, Python, system and kernel sources as the
 build, and a processor that runs the target's instructions) and the cache for the machine's own
-processor is not warm, :func:`use` copies the shipped kernels into a cache folder of their own
+processor is not warm, :func:`use` unpacks the shipped kernels into a cache folder of their own
 beside that one and points numba there (``NUMBA_CPU_NAME``), for this process and the ones it
 starts. ``sandbox warmup`` compiles for the machine itself as before, and from then on that
 cache is used. ``SANDBOX_PREBUILT=off`` leaves the shipped kernels alone.
@@ -39,6 +39,7 @@ import subprocess
 import sys
 import tempfile
 import zipfile
+from collections.abc import MutableMapping
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
@@ -178,7 +179,7 @@ def use(native: Path, kernels: str) -> Path | None:
     return dest
 
 
-def leave(environ: dict | None = None) -> None:
+def leave(environ: MutableMapping[str, str] | None = None) -> None:
     """Take the shipped kernels' settings out of ``environ`` (default: this process's)."""
     environ = os.environ if environ is None else environ
     if environ.get(IN_USE) == "1":
