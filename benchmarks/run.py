@@ -251,15 +251,7 @@ def bench_lessons(cold: bool = False) -> list[dict]:
             # no background warmup after the lessons: it would go on compiling into the cache
             # while it is removed (and beside whatever is timed next)
             env["SANDBOX_WARMUP"] = "off"
-        start = time.perf_counter()
-        proc = subprocess.run(
-            [sys.executable, "-m", "sandbox", "lessons"],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            env=env,
-        )
-        total = time.perf_counter() - start
+        proc, total = time_lessons(env)
     rows = []
     for match in re.finditer(r"^== (\S+): (.+?) in ([0-9.]+) s$", proc.stdout, re.MULTILINE):
         name, status, seconds = match.groups()
@@ -279,6 +271,20 @@ def bench_lessons(cold: bool = False) -> list[dict]:
     return rows
 
 
+def time_lessons(env: dict[str, str]) -> tuple[subprocess.CompletedProcess, float]:
+    """``sandbox lessons`` (all of them, from the checkout) in ``env``: the finished process and
+    its wall time (s)."""
+    start = time.perf_counter()
+    proc = subprocess.run(
+        [sys.executable, "-m", "sandbox", "lessons"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        env=env,
+    )
+    return proc, time.perf_counter() - start
+
+
 def bench_lessons_shipped() -> list[dict]:
     """Wall time of ``sandbox lessons`` from an empty compile cache with the kernels compiled
     ahead in the package (``make wheel``, ``sandbox/prebuilt.py``), as a class's first run from
@@ -291,15 +297,7 @@ def bench_lessons_shipped() -> list[dict]:
     with tempfile.TemporaryDirectory() as cache:
         env = {**os.environ, prebuilt.SWITCH: "on", "NUMBA_CACHE_DIR": cache}
         env["SANDBOX_WARMUP"] = "off"  # as bench_lessons(cold=True)
-        start = time.perf_counter()
-        proc = subprocess.run(
-            [sys.executable, "-m", "sandbox", "lessons"],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            env=env,
-        )
-        total = time.perf_counter() - start
+        proc, total = time_lessons(env)
     status = "ok" if proc.returncode == 0 else f"error: exit {proc.returncode}"
     name = "lessons_total_cold_cache_shipped_kernels"
     return [row(name, value=f"{total:.1f}", unit="s", status=status)]
