@@ -71,9 +71,11 @@ docs: $(DEV_STAMP)
 
 # a wheel for a class (dist/): the engine compiled ahead inside it for x86-64 processors with
 # AVX2 (sandbox/prebuilt.py, one to two minutes), so that a student's first run loads it
+# (the archive is removed from the checkout afterwards: there it would stand in for the engine
+# compiled for this processor until `sandbox warmup`)
 wheel: $(DEV_STAMP)
 	$(BIN)/python -m sandbox.prebuilt
-	$(BIN)/python -m build --wheel --outdir dist
+	$(BIN)/python -m build --wheel --outdir dist; status=$$?; rm -f sandbox/prebuilt_kernels.zip; exit $$status
 
 # the benchmarks against pymunk and Box2D 2.3 (the `bench` extra adds the box2d package)
 bench: $(VENV)/.installed-bench

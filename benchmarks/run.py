@@ -47,7 +47,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 # the engine compiled for this very processor, not kernels compiled ahead to ship in a wheel
-# (sandbox/prebuilt.py), which a checkout holds after `make wheel` until `sandbox warmup`
+# (sandbox/prebuilt.py), which a checkout holds after `python -m sandbox.prebuilt`
 os.environ.setdefault("SANDBOX_PREBUILT", "off")
 
 import pymunk  # noqa: E402
@@ -287,7 +287,7 @@ def time_lessons(env: dict[str, str]) -> tuple[subprocess.CompletedProcess, floa
 
 def bench_lessons_shipped() -> list[dict]:
     """Wall time of ``sandbox lessons`` from an empty compile cache with the kernels compiled
-    ahead in the package (``make wheel``, ``sandbox/prebuilt.py``), as a class's first run from
+    ahead in the package (``python -m sandbox.prebuilt``), as a class's first run from
     that wheel; no row unless the checkout holds them and they run here."""
     from sandbox import prebuilt
     from sandbox.compile_cache import kernel_sources_hash
@@ -432,7 +432,7 @@ def main(argv: list[str] | None = None) -> int:
         "--cold-lessons",
         action="store_true",
         help="also time all lessons from an empty compile cache (about three minutes more), "
-        "and again with the kernels compiled ahead when the checkout holds them (make wheel)",
+        "and again with the kernels compiled ahead if the checkout holds them (sandbox.prebuilt)",
     )
     args = parser.parse_args(argv)
 

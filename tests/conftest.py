@@ -14,5 +14,5 @@ os.environ.setdefault("SANDBOX_WARMUP", "off")
 # marked warm (tests/test_first_run.py takes this away to test the first run)
 os.environ.setdefault("SANDBOX_JIT", "1")
 # ... and compiles for this very processor, whether or not kernels were compiled ahead to ship
-# in the package (`make wheel`; tests/test_prebuilt.py takes this away)
+# in the package (`python -m sandbox.prebuilt`; tests/test_prebuilt.py takes this away)
 os.environ.setdefault("SANDBOX_PREBUILT", "off")
