@@ -12,8 +12,9 @@ computes, only how many numbers it works on at once), and the step benchmarks 4 
 (the wide sweeps do four contacts at once instead of eight).
 
 On a machine where :func:`matches` (the same numba, Python, system and kernel sources as the
-build, and a processor that runs the target's instructions) and the cache for the machine's own
-processor is not warm, :func:`use` unpacks the shipped kernels into a cache folder of their own
+build, and a processor that runs the target's instructions), the cache for the machine's own
+processor is not warm and numba's code generation is not set by hand (:data:`USERS_CHOICE`),
+:func:`use` unpacks the shipped kernels into a cache folder of their own
 beside that one and points numba there (``NUMBA_CPU_NAME``), for this process and the ones it
 starts. ``sandbox warmup`` compiles for the machine itself as before, and from then on that
 cache is used. ``SANDBOX_PREBUILT=off`` leaves the shipped kernels alone.
@@ -58,6 +59,9 @@ MANIFEST = "manifest.json"  # in ARCHIVE: what they were compiled with (this_bui
 SWITCH = "SANDBOX_PREBUILT"  # "off": never use the shipped kernels
 IN_USE = "SANDBOX_PREBUILT_IN_USE"  # set for the processes a process using them starts
 WARM_FILE = "warm"  # as sandbox.compile_cache.WARM_FILE: every kernel is in the folder
+# numba's settings that change the code it makes, which its cache does not tell apart: any of
+# them set, the code is compiled here as asked (array bounds checked, another target ...)
+USERS_CHOICE = ("NUMBA_CPU_NAME", "NUMBA_CPU_FEATURES", "NUMBA_BOUNDSCHECK", "NUMBA_OPT")
 
 
 def this_build(kernels: str) -> dict[str, str]:
@@ -170,8 +174,8 @@ def use(native: Path, kernels: str) -> Path | None:
         if ours:
             leave()
         return None
-    if not ours and (os.environ.get("NUMBA_CPU_NAME") or os.environ.get("NUMBA_CPU_FEATURES")):
-        return None  # the user chose numba's target: theirs
+    if not ours and any(os.environ.get(name) for name in USERS_CHOICE):
+        return None  # the user chose how numba compiles (its target, checks): theirs
     dest = native.parent / f"{native.name}-{TARGET}"
     if not install(dest):
         return None

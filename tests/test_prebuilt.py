@@ -96,7 +96,7 @@ def environ(monkeypatch):
     """The variables the shipped kernels set, unset, and after the test as they were (set first:
     monkeypatch restores only what it changed, and a variable the test sets would else stay set
     for every later test and the processes they start)."""
-    for name in ("NUMBA_CPU_NAME", "NUMBA_CPU_FEATURES", prebuilt.IN_USE, prebuilt.SWITCH):
+    for name in (*prebuilt.USERS_CHOICE, prebuilt.IN_USE, prebuilt.SWITCH):
         monkeypatch.setenv(name, "")
         monkeypatch.delenv(name)
     return os.environ
@@ -121,6 +121,9 @@ def test_use_points_numba_at_them_and_leave_takes_it_back(tmp_path, monkeypatch,
     assert environ["NUMBA_CPU_NAME"] == "haswell"
     prebuilt.leave()
     assert environ["NUMBA_CPU_NAME"] == "haswell"  # not ours: left alone
+    del environ["NUMBA_CPU_NAME"]
+    environ["NUMBA_BOUNDSCHECK"] = "1"  # array bounds checked: compiled here, so
+    assert prebuilt.use(native, kernel_sources_hash()) is None
 
 
 STEP = """
