@@ -58,7 +58,6 @@ KERNELS = "kernels"  # in ARCHIVE: the cache's files, in the package's folders (
 MANIFEST = "manifest.json"  # in ARCHIVE: what they were compiled with (this_build())
 SWITCH = "SANDBOX_PREBUILT"  # "off": never use the shipped kernels
 IN_USE = "SANDBOX_PREBUILT_IN_USE"  # set for the processes a process using them starts
-WARM_FILE = "warm"  # as sandbox.compile_cache.WARM_FILE: every kernel is in the folder
 # numba's settings that change the code it makes, which its cache does not tell apart: any of
 # them set, the code is compiled here as asked (array bounds checked, another target ...)
 USERS_CHOICE = ("NUMBA_CPU_NAME", "NUMBA_CPU_FEATURES", "NUMBA_BOUNDSCHECK", "NUMBA_OPT")
@@ -138,6 +137,8 @@ def install(dest: Path, archive: Path | None = None, package: Path = PACKAGE) ->
     folder ``dest`` under numba's names for ``package``'s folders, once (a folder already marked
     warm is kept), whole or not at all (unpacked beside it, then renamed). Returns whether
     ``dest`` holds them."""
+    from sandbox.compile_cache import WARM_FILE  # here: compile_cache imports this module
+
     if (dest / WARM_FILE).exists():
         return True
     work = None
@@ -195,7 +196,7 @@ def build(dest: Path | None = None) -> None:
     """Compile every kernel for :data:`TARGET` (``sandbox warmup`` in a process of its own, an
     empty cache) and write them into the archive ``dest`` (default :data:`ARCHIVE`) with their
     :data:`MANIFEST`, replacing what was there."""
-    from sandbox.compile_cache import kernel_sources_hash
+    from sandbox.compile_cache import WARM_FILE, kernel_sources_hash
 
     key = kernel_sources_hash()
     with tempfile.TemporaryDirectory() as cache:

@@ -17,7 +17,7 @@ from numba.core.caching import _CacheLocator
 from source_copy import clean_copy
 
 from sandbox import prebuilt
-from sandbox.compile_cache import kernel_sources_hash
+from sandbox.compile_cache import WARM_FILE, kernel_sources_hash
 
 FLAGS = "fpu sse2 " + " ".join(sorted(prebuilt.TARGET_FLAGS)) + " avx512f"
 
@@ -82,7 +82,7 @@ def test_install_copies_under_numbas_names_once(tmp_path):
     assert (solvers / "soft.solve-1.py311.nbi").read_text() == "sandbox.solvers"
     root = dest / prebuilt.numba_folder_name(prebuilt.PACKAGE)
     assert (root / "step.x.nbc").read_text() == "sandbox"
-    assert (dest / prebuilt.WARM_FILE).exists()
+    assert (dest / WARM_FILE).exists()
     (solvers / "soft.solve-1.py311.nbi").write_text("numba's own since")
     assert prebuilt.install(dest, source)  # installed: left as it is
     assert (solvers / "soft.solve-1.py311.nbi").read_text() == "numba's own since"
@@ -109,7 +109,7 @@ def test_use_points_numba_at_them_and_leave_takes_it_back(tmp_path, monkeypatch,
     native = tmp_path / "cache" / "numba-abc"
     folder = prebuilt.use(native, kernel_sources_hash())
     assert folder == tmp_path / "cache" / "numba-abc-x86-64-v3"
-    assert (folder / prebuilt.WARM_FILE).exists()
+    assert (folder / WARM_FILE).exists()
     assert (environ["NUMBA_CPU_NAME"], environ["NUMBA_CPU_FEATURES"]) == ("x86-64-v3", "")
     assert prebuilt.use(native, kernel_sources_hash()) == folder  # a process it started
     environ[prebuilt.SWITCH] = "off"  # one that compiles for this very processor
@@ -162,7 +162,7 @@ def test_a_run_that_loads_them_compiles_nothing_and_steps_the_same(tmp_path, env
     loaded = json.loads(out.stdout.splitlines()[-1])
     assert loaded[0] is True
     assert not log.exists() or log.read_text().strip() == ""  # nothing compiled
-    assert (tmp_path / "empty" / f"numba-{key}-x86-64-v3" / prebuilt.WARM_FILE).exists()
+    assert (tmp_path / "empty" / f"numba-{key}-x86-64-v3" / WARM_FILE).exists()
     # the same numbers as the engine's own functions, uncompiled
     plain = {**environ, "SANDBOX_JIT": "0", prebuilt.SWITCH: "off"}
     out = subprocess.run(run, env=plain, cwd=tmp_path, check=True, capture_output=True, text=True)

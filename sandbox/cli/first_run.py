@@ -93,10 +93,7 @@ def start_background_warmup(folder) -> bool:
         lock.write_text(str(os.getpid()))
     except OSError:
         return False
-    from sandbox.prebuilt import SWITCH, leave
-
-    env = {**os.environ, "SANDBOX_JIT": "1", SWITCH: "off"}  # for this very processor
-    leave(env)
+    env = {**os.environ, "SANDBOX_JIT": "1"}  # (the warmup compiles for this very processor)
     try:
         warmup = subprocess.Popen(
             [sys.executable, "-m", "sandbox", "warmup", "--quiet"],
